@@ -1,0 +1,41 @@
+#pragma once
+/// \file LayerRules.h
+/// User rules "name glob → layer", e.g. `*skin*=0`, `*spongy*=2`. The first matching rule wins.
+/// From a JSON file: {"rules": [{"match": "*skin*", "layer": 0}, ...]}
+/// or from a CLI string: "*skin*=0;*bone*=1".
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mvcl {
+
+struct LayerRule {
+    std::string pattern; ///< glob: `*` any run, `?` one character; case-sensitive
+    int layer = 0;
+};
+
+class LayerRules {
+public:
+    void add(LayerRule rule);
+    const std::vector<LayerRule> &rules() const { return m_rules; }
+    bool isEmpty() const { return m_rules.empty(); }
+
+    /// Layer of the first rule matching any of the names (node name, then mesh name).
+    std::optional<int> match(std::string_view nodeName, std::string_view meshName) const;
+
+    /// Throws mvcl::Error naming the file and the problem.
+    static LayerRules fromJsonFile(const std::filesystem::path &path);
+    /// Parses "glob=layer;glob=layer". Throws mvcl::Error on bad syntax or a layer out of range.
+    static LayerRules fromString(std::string_view text);
+
+private:
+    std::vector<LayerRule> m_rules;
+};
+
+/// Glob match with `*` and `?`.
+bool globMatch(std::string_view pattern, std::string_view text);
+
+} // namespace mvcl

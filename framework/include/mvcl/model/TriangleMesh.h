@@ -1,0 +1,36 @@
+#pragma once
+/// \file TriangleMesh.h
+/// A triangle mesh as in the paper: a vertex list plus a triangle index list, in scene space
+/// (node transforms already applied, in double, then re-centred on Scene::worldFromScene).
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mvcl {
+
+/// Where a mesh's layer came from, in order of precedence.
+enum class LayerSource : uint8_t {
+    Unassigned, ///< not yet decided; SceneLoader runs containment inference on these
+    Builtin,    ///< set by a built-in scene
+    Extras,     ///< glTF `extras.layer` on the node or the mesh
+    Rule,       ///< a user rule (name glob → layer)
+    Inferred,   ///< automatic inference by containment
+};
+
+struct TriangleMesh {
+    std::string name;      ///< node name, or mesh name when the node has none
+    std::string meshName;  ///< glTF mesh name (may be empty)
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;  ///< empty, or one unit normal per position
+    std::vector<glm::uvec3> indices; ///< triangles, counter-clockwise = front
+    uint32_t material = 0;           ///< index into Scene::materials
+    int layer = 0;
+    LayerSource layerSource = LayerSource::Unassigned;
+    int sourceNode = -1; ///< glTF node index, -1 for built-in geometry
+    int sourceMesh = -1; ///< glTF mesh index, -1 for built-in geometry
+};
+
+} // namespace mvcl

@@ -1,0 +1,29 @@
+#pragma once
+/// \file LayerInference.h
+/// Automatic layers by containment ("onion peeling"): meshes that are not enclosed by the others
+/// form layer k; remove them and repeat for k + 1. A sample point on a mesh is enclosed when rays
+/// along all six axis directions hit some other remaining mesh; a mesh is enclosed when at least
+/// `enclosedFraction` of its samples are.
+
+#include <cstddef>
+
+namespace mvcl {
+
+struct Scene;
+
+struct LayerInferenceSettings {
+    int samplesPerMesh = 64;        ///< triangle centroids sampled per mesh
+    float enclosedFraction = 0.6f;  ///< share of enclosed samples that makes a mesh "inside"
+    int firstLayer = 0;             ///< layer given to the outermost peel
+};
+
+struct LayerInferenceResult {
+    std::size_t meshesAssigned = 0;
+    int layerCount = 0; ///< distinct layers produced
+};
+
+/// Assigns a layer to every mesh with LayerSource::Unassigned (the others are kept as they are
+/// and act as occluders), and adds the layers to the scene's table.
+LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInferenceSettings &settings = {});
+
+} // namespace mvcl

@@ -1,0 +1,48 @@
+#pragma once
+/// \file RayPolicy.h
+/// What the tracer does for one pixel, as plain data. Lenses (issue "Lenses") compose into one
+/// RayPolicy per distinct overlap set; the integrator reads it and never calls back into a lens.
+
+#include <mvcl/tracer/RayQuery.h>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+
+namespace mvcl {
+
+enum class RayType : uint8_t { Primary = 0, Shadow = 1, Reflection = 2, Refraction = 3 };
+inline constexpr int kRayTypeCount = 4;
+
+/// How hits are lit.
+struct ShadingPolicy {
+    bool shadows = true;      ///< trace shadow rays at all
+    float shadowStrength = 1; ///< 0 = occluded light passes fully, 1 = fully blocked
+    glm::vec3 shadowTint{0.f}; ///< colour an occluded light is multiplied by at full strength
+    bool reflections = true;  ///< trace mirror rays
+    bool refractions = true;  ///< trace refracted rays
+    int maxDepth = 8;         ///< bounces after the primary hit (≥ 0)
+};
+
+/// Affine colour map applied after shading: c' = matrix·c + offset (linear RGB). Affine maps
+/// compose by multiplication, so a stack of colour lenses folds into one.
+struct ColorPolicy {
+    glm::mat3 matrix{1.f};
+    glm::vec3 offset{0.f};
+    bool isIdentity() const { return matrix == glm::mat3(1.f) && offset == glm::vec3(0.f); }
+};
+
+struct RayPolicy {
+    /// One visibility query template per ray type (indexed by RayType). The integrator
+    /// narrows tMax for shadow rays to the light's distance.
+    std::array<RayQuery, kRayTypeCount> visibility{};
+    ShadingPolicy shading{};
+    ColorPolicy color{};
+
+    RayQuery &query(RayType type) { return visibility[size_t(type)]; }
+    const RayQuery &query(RayType type) const { return visibility[size_t(type)]; }
+};
+
+} // namespace mvcl

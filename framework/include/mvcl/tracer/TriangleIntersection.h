@@ -1,0 +1,33 @@
+#pragma once
+/// \file TriangleIntersection.h
+/// Watertight ray/triangle test (Woop, Benthin & Wald 2013, as in pbrt-v4): no ray passes between
+/// two triangles sharing an edge or a vertex. Exposed for tests; the tracer uses the same code.
+
+#include <mvcl/tracer/Ray.h>
+
+#include <glm/vec3.hpp>
+
+namespace mvcl {
+
+struct TriangleHit {
+    float t;
+    float b0, b1, b2; ///< barycentrics of p0, p1, p2
+};
+
+/// Per-ray constants of the watertight test (permutation and shear), computed once per ray.
+struct WatertightRay {
+    int kx, ky, kz;
+    float sx, sy, sz;
+    glm::vec3 origin;
+    explicit WatertightRay(const Ray &ray);
+};
+
+/// Hit with tMin < t < tMax (the lower bound is conservative so t > 0 is guaranteed when tMin = 0).
+bool intersectTriangle(const WatertightRay &ray, const glm::vec3 &p0, const glm::vec3 &p1,
+                       const glm::vec3 &p2, float tMin, float tMax, TriangleHit &hit);
+
+/// Convenience overload building the WatertightRay.
+bool intersectTriangle(const Ray &ray, const glm::vec3 &p0, const glm::vec3 &p1,
+                       const glm::vec3 &p2, float tMin, float tMax, TriangleHit &hit);
+
+} // namespace mvcl

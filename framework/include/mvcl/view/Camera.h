@@ -1,0 +1,48 @@
+#pragma once
+/// \file Camera.h
+/// Pinhole camera: look-at, vertical field of view. Generates unit-direction primary rays, so
+/// t along a primary ray is the distance from the eye (the layer lens's d relies on this).
+
+#include <mvcl/core/Bounds3.h>
+#include <mvcl/model/CameraDesc.h>
+#include <mvcl/tracer/Ray.h>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+namespace mvcl {
+
+class Camera {
+public:
+    Camera();
+    /// \param eye, target, up scene space; up need not be orthogonal to the view direction
+    /// \param verticalFovDegrees in (0, 180)
+    static Camera lookAt(const glm::vec3 &eye, const glm::vec3 &target, const glm::vec3 &up,
+                         float verticalFovDegrees);
+    static Camera fromDesc(const CameraDesc &desc);
+    /// A camera that sees all of `bounds` from the front-right-above, at the given aspect ratio.
+    static Camera framing(const Bounds3f &bounds, float verticalFovDegrees, float aspect);
+
+    const glm::vec3 &eye() const { return m_eye; }
+    const glm::vec3 &target() const { return m_target; }
+    const glm::vec3 &up() const { return m_up; }
+    float verticalFov() const { return m_verticalFovDegrees; }
+
+    /// Ray through continuous raster position (x, y), (0,0) = top-left corner of the image.
+    Ray generateRay(float x, float y, int width, int height) const;
+
+    /// Columns: right, up, backward (−forward), i.e. the rotation worldFromCamera.
+    const glm::mat3 &worldFromCamera() const { return m_worldFromCamera; }
+
+private:
+    void update();
+
+    glm::vec3 m_eye{0.f, 0.f, 5.f};
+    glm::vec3 m_target{0.f};
+    glm::vec3 m_up{0.f, 1.f, 0.f};
+    float m_verticalFovDegrees = 45.f;
+    glm::mat3 m_worldFromCamera{1.f};
+    float m_tanHalfFov = 0.f;
+};
+
+} // namespace mvcl

@@ -1,0 +1,35 @@
+#pragma once
+/// \file Renderer.h
+/// Tile-parallel renderer over all cores. Each pixel's samples depend only on (x, y, seed), and a
+/// pixel is summed in a fixed order, so the image is identical for any thread count.
+
+#include <mvcl/view/Camera.h>
+#include <mvcl/view/Framebuffer.h>
+#include <mvcl/view/PolicyMap.h>
+#include <mvcl/view/RenderSettings.h>
+#include <mvcl/view/RenderStats.h>
+
+#include <functional>
+
+namespace mvcl {
+
+class Tracer;
+
+/// Called with the fraction done (0..1), from whichever thread finished a tile, serialised.
+using ProgressCallback = std::function<void(float)>;
+
+class Renderer {
+public:
+    explicit Renderer(const Tracer &tracer);
+
+    /// Renders into `target` (resized to settings.width × settings.height). `policies` must have
+    /// the same size. Thread-safe with respect to other renders of the same tracer.
+    RenderStats render(const Camera &camera, const PolicyMap &policies,
+                       const RenderSettings &settings, Framebuffer &target,
+                       const ProgressCallback &progress = {}) const;
+
+private:
+    const Tracer &m_tracer;
+};
+
+} // namespace mvcl

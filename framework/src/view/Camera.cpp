@@ -1,0 +1,61 @@
+#include <mvcl/view/Camera.h>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mvcl {
+
+Camera::Camera() { update(); }
+
+Camera Camera::lookAt(const glm::vec3 &eye, const glm::vec3 &target, const glm::vec3 &up,
+                      float verticalFovDegrees) {
+    Camera c;
+    c.m_eye = eye;
+    c.m_target = target;
+    c.m_up = up;
+    c.m_verticalFovDegrees = verticalFovDegrees;
+    c.update();
+    return c;
+}
+
+Camera Camera::fromDesc(const CameraDesc &desc) {
+    return lookAt(desc.eye, desc.target, desc.up, desc.verticalFovDegrees);
+}
+
+Camera Camera::framing(const Bounds3f &bounds, float verticalFovDegrees, float aspect) {
+    if (bounds.isEmpty()) return lookAt({0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, verticalFovDegrees);
+    const glm::vec3 center = bounds.center();
+    const float radius = std::max(0.5f * glm::length(bounds.extent()), 1e-30f);
+    // Fit the bounding sphere into the narrower of the two fields of view.
+    const float halfV = glm::radians(verticalFovDegrees) * 0.5f;
+    const float halfH = std::atan(std::tan(halfV) * aspect);
+    const float distance = radius / std::sin(std::min(halfV, halfH)) * 1.05f;
+    const glm::vec3 viewDir = glm::normalize(glm::vec3(0.55f, 0.45f, 1.f));
+    return lookAt(center + distance * viewDir, center, {0.f, 1.f, 0.f}, verticalFovDegrees);
+}
+
+void Camera::update() {
+    glm::vec3 forward = m_target - m_eye;
+    if (!(glm::length(forward) > 0.f)) forward = {0.f, 0.f, -1.f};
+    forward = glm::normalize(forward);
+    glm::vec3 right = glm::cross(forward, m_up);
+    if (!(glm::length(right) > 1e-6f)) // up parallel to the view: pick any perpendicular
+        right = glm::cross(forward, std::abs(forward.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0));
+    right = glm::normalize(right);
+    const glm::vec3 trueUp = glm::cross(right, forward);
+    m_worldFromCamera = glm::mat3(right, trueUp, -forward);
+    m_tanHalfFov = std::tan(glm::radians(std::clamp(m_verticalFovDegrees, 1e-3f, 179.f)) * 0.5f);
+}
+
+Ray Camera::generateRay(float x, float y, int width, int height) const {
+    const float aspect = float(width) / float(height);
+    const float sx = (2.f * x / float(width) - 1.f) * m_tanHalfFov * aspect;
+    const float sy = (1.f - 2.f * y / float(height)) * m_tanHalfFov;
+    const glm::vec3 dir = m_worldFromCamera * glm::vec3(sx, sy, -1.f);
+    return Ray{m_eye, glm::normalize(dir)};
+}
+
+} // namespace mvcl

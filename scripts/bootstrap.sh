@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Sets up a Debian 12 machine for mvcl and builds it: installs the Debian packages that are
+# missing (needs root or sudo), then configures and builds into build/ (or $MVCL_BUILD_DIR).
+# Used by both README commands and by .ci/run. Safe to run again: it only does what is missing.
+set -euo pipefail
+
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_dir="${MVCL_BUILD_DIR:-$repo/build}"
+build_type="${MVCL_BUILD_TYPE:-Release}"
+
+packages=(
+  g++ cmake ninja-build pkg-config
+  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenimageio-dev
+  libgtest-dev
+  libembree-dev libbenchmark-dev   # optional peers for mvcl-bench
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "bootstrap: installing ${missing[*]}" >&2
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+cmake -S "$repo" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" >/dev/null
+cmake --build "$build_dir" -- -j"$(nproc)"

@@ -1,0 +1,157 @@
+// mvcl-render as a user runs it: exit codes, messages, and every shared model rendered.
+
+#include "ImageCompare.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CommandResult {
+    int exitCode = -1;
+    std::string output; // stdout and stderr together
+};
+
+CommandResult runRender(const std::string &args) {
+    const std::string cmd = std::string(MVCL_RENDER_EXE) + " --no-progress " + args + " 2>&1";
+    CommandResult r;
+    FILE *pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf;
+    while (std::fgets(buf.data(), int(buf.size()), pipe)) r.output += buf.data();
+    const int status = pclose(pipe);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+fs::path outDir() {
+    fs::path p = fs::temp_directory_path() / "mvcl-cli-test";
+    fs::create_directories(p);
+    return p;
+}
+
+std::string dataPath(const std::string &rel) { return (fs::path(MVCL_TEST_DATA_DIR) / rel).string(); }
+
+/// Mean luminance spread of an image: a blank (single-colour) image has zero.
+double imageVariance(const mvcl::Framebuffer &f) {
+    double sum = 0, sum2 = 0;
+    for (const glm::vec3 &p : f.pixels()) {
+        const double y = 0.2126 * p.r + 0.7152 * p.g + 0.0722 * p.b;
+        sum += y;
+        sum2 += y * y;
+    }
+    const double n = double(f.pixels().size());
+    return sum2 / n - (sum / n) * (sum / n);
+}
+
+} // namespace
+
+TEST(RenderCli, HelpAndVersionExitZero) {
+    const CommandResult help = runRender("--help");
+    EXPECT_EQ(help.exitCode, 0);
+    EXPECT_NE(help.output.find("Exit codes"), std::string::npos);
+    EXPECT_EQ(runRender("--version").exitCode, 0);
+}
+
+TEST(RenderCli, BadArgumentsExitTwoWithOneLineError) {
+    for (const char *args : {"", "--bogus builtin:onion", "builtin:onion --spp 0", "builtin:onion --size 10",
+                             "builtin:onion --eye 1,2", "builtin:onion --fov 200", "a.glb b.glb",
+                             "builtin:onion --threads"}) {
+        const CommandResult r = runRender(args);
+        EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find("mvcl-render: command line:"), std::string::npos) << args << "\n" << r.output;
+    }
+}
+
+TEST(RenderCli, MissingOrUnknownSceneExitsOneNamingIt) {
+    for (const std::string &src : {std::string("/nonexistent/model.glb"), std::string("builtin:teapot"),
+                                   std::string("notes.txt")}) {
+        const CommandResult r = runRender(src + " --info");
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find(src.substr(src.find_last_of("/:") + 1)), std::string::npos) << r.output;
+    }
+}
+
+TEST(RenderCli, InfoPrintsLayersWithoutRendering) {
+    const CommandResult r = runRender("builtin:cube-in-cube --info");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("triangles  24"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("inner cube"), std::string::npos);
+    EXPECT_EQ(r.output.find("wrote"), std::string::npos);
+}
+
+TEST(RenderCli, DefaultSceneRendersAndReportsThroughput) {
+    const fs::path out = outDir() / "default.png";
+    fs::remove(out);
+    const CommandResult r = runRender("builtin:cube-in-cube --size 160x120 --spp 1 -o " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char *key : {"bvh", "render", "Mrays/s", "wrote"})
+        EXPECT_NE(r.output.find(key), std::string::npos) << key << "\n" << r.output;
+    ASSERT_TRUE(fs::exists(out));
+    EXPECT_GT(imageVariance(mvcl::readImage(out)), 1e-4);
+}
+
+TEST(RenderCli, UnwritableOutputExitsThree) {
+    const CommandResult r = runRender("builtin:onion --size 8x8 -o /proc/forbidden/x.png");
+    EXPECT_EQ(r.exitCode, 3) << r.output;
+    EXPECT_NE(r.output.find("/proc/forbidden/x.png"), std::string::npos) << r.output;
+}
+
+// Every real model of the shared corpus renders to an image that is not blank.
+class RenderCliModel : public ::testing::TestWithParam<const char *> {};
+
+TEST_P(RenderCliModel, RendersToANonBlankImage) {
+    const std::string model = dataPath(GetParam());
+    const fs::path out = outDir() / (fs::path(model).stem().string() + ".png");
+    fs::remove(out);
+    const CommandResult r = runRender("\"" + model + "\" --size 96x72 --spp 1 -o " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    ASSERT_TRUE(fs::exists(out));
+    EXPECT_GT(imageVariance(mvcl::readImage(out)), 1e-4) << "blank image for " << model;
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedModels, RenderCliModel,
+                         ::testing::Values("models/Box/Box.glb", "models/Duck/Duck.glb",
+                                           "models/Avocado/Avocado.glb",
+                                           "models/2CylinderEngine/2CylinderEngine.glb",
+                                           "models/MosquitoInAmber/MosquitoInAmber.glb",
+                                           "models/HRA_Kidney_Female_Left/VH_F_Kidney_L.glb",
+                                           "models/HRA_Female_Body/HRA_Female_Body.glb"),
+                         [](const auto &info) {
+                             std::string n = fs::path(info.param).stem().string();
+                             for (char &c : n)
+                                 if (!std::isalnum((unsigned char)c)) c = '_';
+                             return n;
+                         });
+
+// Each invalid file of the EdgeCases corpus marked REJECT fails with exit 1 and names the file.
+TEST(RenderCli, RejectedEdgeCasesExitOneNamingTheFile) {
+    std::ifstream index(dataPath("models/EdgeCases/INDEX.tsv"));
+    ASSERT_TRUE(index) << "INDEX.tsv missing";
+    std::string line;
+    std::getline(index, line); // header
+    int rejected = 0;
+    while (std::getline(index, line)) {
+        std::stringstream ss(line);
+        std::string file, errors, warnings, expectation;
+        std::getline(ss, file, '\t');
+        std::getline(ss, errors, '\t');
+        std::getline(ss, warnings, '\t');
+        std::getline(ss, expectation, '\t');
+        if (expectation != "REJECT") continue;
+        const CommandResult r = runRender("\"" + dataPath("models/EdgeCases/" + file) + "\" --info");
+        EXPECT_EQ(r.exitCode, 1) << file << "\n" << r.output;
+        EXPECT_NE(r.output.find(fs::path(file).filename().string()), std::string::npos) << r.output;
+        ++rejected;
+    }
+    EXPECT_GE(rejected, 10);
+}

@@ -1,0 +1,140 @@
+#include <mvcl/tracer/WhittedIntegrator.h>
+
+#include <mvcl/model/BuiltinScenes.h>
+#include <mvcl/tracer/Tracer.h>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace mvcl;
+
+namespace {
+
+bool finite(const glm::vec3 &c) { return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z); }
+
+Scene singleSphereScene(const Material &material) {
+    Scene s;
+    s.materials.push_back(material);
+    s.spheres.push_back({"ball", {0.f, 0.f, 0.f}, 1.f, 0, 0});
+    s.background = glm::vec3(0.25f, 0.5f, 0.75f);
+    s.ambientLight = glm::vec3(0.f);
+    return s;
+}
+
+} // namespace
+
+TEST(WhittedIntegrator, MissReturnsBackground) {
+    Scene s = singleSphereScene(Material{});
+    const Tracer tracer(s);
+    RayCounters counters;
+    const glm::vec3 c = WhittedIntegrator(tracer).radiance({{0.f, 5.f, 5.f}, {0.f, 0.f, 1.f}}, {}, counters);
+    EXPECT_EQ(c, s.background);
+    EXPECT_EQ(counters.primary, 1u);
+}
+
+TEST(WhittedIntegrator, LambertTermFollowsEquationOne) {
+    Material m;
+    m.diffuse = glm::vec3(0.5f);
+    m.ambient = glm::vec3(0.f);
+    Scene s = singleSphereScene(m);
+    Light light;
+    light.type = LightType::Directional;
+    light.direction = {0.f, 0.f, -1.f}; // shines along −z onto the +z pole
+    light.intensity = glm::vec3(2.f);
+    s.lights.push_back(light);
+    const Tracer tracer(s);
+    RayCounters counters;
+    const glm::vec3 c = WhittedIntegrator(tracer).radiance({{0.f, 0.f, 5.f}, {0.f, 0.f, -1.f}}, {}, counters);
+    EXPECT_NEAR(c.r, 1.f, 1e-5f); // I · P · (L·N) = 2 · 0.5 · 1
+    EXPECT_EQ(counters.shadow, 1u);
+}
+
+TEST(WhittedIntegrator, GlassSphereTransmitsAndNeverProducesNaN) {
+    Material glass;
+    glass.diffuse = glm::vec3(0.f);
+    glass.ambient = glm::vec3(0.f);
+    glass.transparency = 1.f;
+    glass.ior = 1.5f;
+    Scene s = singleSphereScene(glass);
+    const Tracer tracer(s);
+    const WhittedIntegrator integrator(tracer);
+    // Rays from the centre line to grazing: total internal reflection happens inside for the
+    // grazing ones; every result stays finite and bounded by the background.
+    for (int i = 0; i <= 100; ++i) {
+        const float y = 0.999f * float(i) / 100.f;
+        RayCounters counters;
+        const glm::vec3 c = integrator.radiance({{0.f, y, 5.f}, {0.f, 0.f, -1.f}}, {}, counters);
+        EXPECT_TRUE(finite(c)) << "y=" << y;
+        EXPECT_LE(c.b, s.background.b * 1.0001f);
+        EXPECT_GT(counters.refraction, 0u);
+    }
+    // Straight through the centre almost everything is transmitted (Fresnel ≈ 4% per face).
+    RayCounters counters;
+    const glm::vec3 centre = integrator.radiance({{0.f, 0.f, 5.f}, {0.f, 0.f, -1.f}}, {}, counters);
+    EXPECT_GT(centre.b, 0.8f * s.background.b);
+}
+
+TEST(WhittedIntegrator, FacingMirrorsTerminateAtTheDepthLimit) {
+    Scene s;
+    Material mirror;
+    mirror.reflectivity = 1.f;
+    mirror.diffuse = glm::vec3(0.f);
+    mirror.ambient = glm::vec3(0.f);
+    s.materials.push_back(mirror);
+    s.planes.push_back({"a", {0.f, 0.f, 1.f}, -1.f, 0, 0});
+    s.planes.push_back({"b", {0.f, 0.f, -1.f}, -1.f, 0, 0});
+    const Tracer tracer(s);
+    RayPolicy policy;
+    policy.shading.maxDepth = 1000000; // clamped internally
+    RayCounters counters;
+    const glm::vec3 c = WhittedIntegrator(tracer).radiance({{0.f, 0.f, 0.f}, {0.f, 0.01f, 1.f}}, policy, counters);
+    EXPECT_TRUE(finite(c));
+    EXPECT_LE(counters.reflection, 64u);
+    EXPECT_GE(counters.reflection, 10u);
+}
+
+TEST(WhittedIntegrator, ShadowPolicyControlsOcclusion) {
+    // A small sphere between a directional light and a large one.
+    Scene s;
+    Material m;
+    m.ambient = glm::vec3(0.f);
+    m.diffuse = glm::vec3(1.f);
+    s.materials.push_back(m);
+    s.spheres.push_back({"big", {0.f, 0.f, 0.f}, 1.f, 0, 0});
+    s.spheres.push_back({"blocker", {0.f, 3.f, 0.f}, 0.5f, 0, 1});
+    Light light;
+    light.type = LightType::Directional;
+    light.direction = {0.f, -1.f, 0.f};
+    s.lights.push_back(light);
+    const Tracer tracer(s);
+    const WhittedIntegrator integrator(tracer);
+    const Ray down{{0.f, 1.5f, 0.f}, {0.f, -1.f, 0.f}}; // starts below the blocker
+    RayCounters counters;
+    RayPolicy policy;
+    EXPECT_NEAR(integrator.radiance(down, policy, counters).r, 0.f, 1e-6f);
+    policy.shading.shadowStrength = 0.5f;
+    EXPECT_NEAR(integrator.radiance(down, policy, counters).r, 0.5f, 1e-5f);
+    policy.shading.shadowStrength = 1.f;
+    policy.query(RayType::Shadow).layerMask = layerBit(0); // the blocker (layer 1) casts no shadow
+    EXPECT_NEAR(integrator.radiance(down, policy, counters).r, 1.f, 1e-5f);
+    policy = RayPolicy{};
+    policy.shading.shadows = false;
+    EXPECT_NEAR(integrator.radiance(down, policy, counters).r, 1.f, 1e-5f);
+}
+
+TEST(WhittedIntegrator, ColourPolicyIsAppliedAfterShading) {
+    Scene s = singleSphereScene(Material{});
+    const Tracer tracer(s);
+    RayPolicy policy;
+    const glm::vec3 luma(0.2126f, 0.7152f, 0.0722f);
+    // Every row is the luminance weights, so each output channel is dot(luma, c).
+    policy.color.matrix = glm::transpose(glm::mat3(luma, luma, luma));
+    RayCounters counters;
+    const glm::vec3 c = WhittedIntegrator(tracer).radiance({{0.f, 5.f, 5.f}, {0.f, 0.f, 1.f}}, policy, counters);
+    const float y = glm::dot(luma, s.background);
+    EXPECT_NEAR(c.r, y, 1e-6f);
+    EXPECT_NEAR(c.g, y, 1e-6f);
+    EXPECT_NEAR(c.b, y, 1e-6f);
+}
