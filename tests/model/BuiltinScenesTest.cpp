@@ -35,7 +35,9 @@ TEST(BuiltinScenes, OnionHasFourNestedLayers) {
     ASSERT_EQ(s.spheres.size(), 4u);
     for (int i = 0; i < 4; ++i) {
         EXPECT_EQ(s.spheres[i].layer, i);
-        if (i > 0) EXPECT_LT(s.spheres[i].radius, s.spheres[i - 1].radius);
+        if (i > 0) {
+            EXPECT_LT(s.spheres[i].radius, s.spheres[i - 1].radius);
+        }
     }
     EXPECT_EQ(s.layers.count(), 4);
 }

@@ -2,6 +2,7 @@
 
 #include "ImageCompare.h"
 
+#include <mvcl/core/Error.h>
 #include <mvcl/io/SceneLoader.h>
 #include <mvcl/model/BuiltinScenes.h>
 #include <mvcl/tracer/Tracer.h>

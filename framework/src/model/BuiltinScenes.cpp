@@ -56,7 +56,7 @@ Scene makeCubeInCube() {
 
     const uint32_t outer = addMaterial(scene, phong("outer cube", {0.25f, 0.45f, 0.85f}, 0.4f, 40.f));
     const uint32_t inner = addMaterial(scene, phong("inner cube", {0.9f, 0.2f, 0.15f}, 0.5f, 60.f));
-    Material floorMaterial = phong("floor", {0.75f, 0.72f, 0.65f}, 0.1f, 10.f);
+    Material floorMaterial = phong("floor", {0.50f, 0.48f, 0.44f}, 0.1f, 10.f);
     floorMaterial.reflectivity = 0.15f;
     const uint32_t floor = addMaterial(scene, floorMaterial);
     Material mirror = phong("mirror", {0.1f, 0.1f, 0.1f}, 0.8f, 200.f);
@@ -79,7 +79,7 @@ Scene makeCubeInCube() {
     Light light;
     light.name = "key";
     light.type = LightType::Point;
-    light.position = {4.f, 7.f, 6.f};
+    light.position = {5.f, 9.f, 2.5f};
     light.intensity = glm::vec3(1.f);
     scene.lights.push_back(light);
 
