@@ -92,9 +92,10 @@ Camera chooseCamera(const Scene &scene, const RenderCommandLine &cl) {
 int run(const RenderCommandLine &cl) {
     SceneLoadOptions loadOptions;
     if (!cl.layerRules.empty()) loadOptions.layerRules = LayerRules::fromString(cl.layerRules);
-    if (!cl.layerRulesFile.empty())
-        for (const LayerRule &rule : LayerRules::fromJsonFile(cl.layerRulesFile).rules())
-            loadOptions.layerRules.add(rule);
+    if (!cl.layerRulesFile.empty()) {
+        const LayerRules fileRules = LayerRules::fromJsonFile(cl.layerRulesFile);
+        for (const LayerRule &rule : fileRules.rules()) loadOptions.layerRules.add(rule);
+    }
 
     const Scene scene = loadScene(cl.source, loadOptions);
     if (cl.info) {

@@ -1,0 +1,198 @@
+/// glTF 2.0 loader: tinygltf parses, then our own validation (GltfValidator) and scene building
+/// (GltfSceneBuilder). docs/gltf-loading.md describes every check.
+///
+/// Stages:
+///   1. size cap; GLB header and chunk lengths checked here (tinygltf 2.7 can read up to 8 bytes
+///      past a truncated BIN chunk); JSON nesting depth capped (tinygltf converts `extras`
+///      recursively);
+///   2. tinygltf with image decoding off and sandboxed file access (GltfFileSandbox);
+///   3. GltfValidator: asset version, extensionsRequired, bufferView/accessor bounds in checked
+///      uint64, sparse accessors, index accessor types, node forest (no cycles, one parent), scene;
+///   4. GltfSceneBuilder: node transforms in double, one TriangleMesh per (node, material),
+///      triangulation, normals, re-centring on the world AABB centre, lights, cameras, layers.
+///
+/// Material mapping (glTF pbrMetallicRoughness → our Phong Material), with base = baseColorFactor,
+/// m = metallicFactor, r = roughnessFactor (all clamped to [0, 1]); textures are ignored:
+///   diffuse      = base.rgb · (1 − m)            (metals have no diffuse lobe)
+///   ambient      = diffuse
+///   specular Ks  = (1 − r) · (0.3 + 0.7·m)        (smooth → strong highlight; metals strongest)
+///   shininess Ps = clamp(2 / max(r, 0.05)⁴ − 2, 1, 1024)   (Blinn-Phong exponent of roughness r)
+///   reflectivity = m · (1 − r)                    (smooth metals mirror)
+///   transparency = KHR_materials_transmission.transmissionFactor, or 1 − base.a for alphaMode
+///                  BLEND (the larger of the two); 0 otherwise
+///   ior          = KHR_materials_ior.ior (default 1.5), clamped to [1, 10]
+///   A primitive without a material gets an appended "default" material (Material's defaults);
+///   Scene::materials is never empty.
+///
+/// Lights (KHR_lights_punctual): intensity = colour · intensity (candela for point/spot, lux for
+/// directional); point lights fall off as 1/r² (constant = linear = 0, quadratic = 1); spot lights
+/// become point lights (with a warning); directional lights shine along the node's −Z.
+/// Cameras: perspective camera nodes → CameraDesc{eye = node origin, target = eye + node −Z,
+/// up = node +Y, yfov in degrees}; orthographic cameras are skipped with a warning.
+/// Layers: node extras.layer, then mesh extras.layer (LayerSource::Extras), then the options'
+/// layer rules on (node name, mesh name) (LayerSource::Rule), else LayerSource::Unassigned.
+
+#include <mvcl/model/GltfLoader.h>
+
+#include "GltfContext_p.h"
+#include "GltfFileSandbox_p.h"
+#include "GltfSceneBuilder_p.h"
+#include "GltfValidator_p.h"
+
+#include <mvcl/core/Error.h>
+
+#include <tiny_gltf.h>
+
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <new>
+#include <sstream>
+
+namespace mvcl {
+
+namespace {
+
+/// Deeper JSON than this is refused before tinygltf sees it (its extras conversion recurses).
+constexpr int kMaxJsonDepth = 512;
+
+std::uint32_t readLe32(const std::uint8_t *p) {
+    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+}
+
+/// Checks the GLB container so that tinygltf only ever reads inside `bytes`.
+/// Returns the JSON chunk.
+std::span<const std::uint8_t> checkGlb(std::span<const std::uint8_t> bytes, const std::string &source) {
+    if (bytes.size() < 20) throw Error(source, "GLB file is shorter than its 20-byte header");
+    const std::uint32_t version = readLe32(bytes.data() + 4);
+    const std::uint64_t length = readLe32(bytes.data() + 8);
+    const std::uint64_t jsonLength = readLe32(bytes.data() + 12);
+    if (version != 2) throw Error(source, "GLB version is " + std::to_string(version) + ", expected 2");
+    if (length > bytes.size())
+        throw Error(source, "GLB header says " + std::to_string(length) + " bytes, but the file has " +
+                                std::to_string(bytes.size()) + " (truncated?)");
+    if (readLe32(bytes.data() + 16) != 0x4E4F534Au) throw Error(source, "GLB first chunk is not JSON");
+    if (jsonLength == 0 || 20 + jsonLength > length)
+        throw Error(source, "GLB JSON chunk length " + std::to_string(jsonLength) + " does not fit in the file");
+    const std::uint64_t binStart = 20 + jsonLength;
+    if (binStart < length) {
+        if (binStart + 8 > length) throw Error(source, "GLB BIN chunk header is truncated");
+        const std::uint64_t binLength = readLe32(bytes.data() + binStart);
+        if (binStart + 8 + binLength > length)
+            throw Error(source, "GLB BIN chunk (" + std::to_string(binLength) + " bytes) runs past the end of the file");
+        if (readLe32(bytes.data() + binStart + 4) != 0x004E4942u)
+            throw Error(source, "GLB second chunk is not BIN");
+    }
+    return bytes.subspan(20, std::size_t(jsonLength));
+}
+
+void checkJsonDepth(std::span<const std::uint8_t> json, const std::string &source) {
+    int depth = 0;
+    bool inString = false, escaped = false;
+    for (std::uint8_t c : json) {
+        if (inString) {
+            if (escaped) escaped = false;
+            else if (c == '\\') escaped = true;
+            else if (c == '"') inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '{' || c == '[') {
+            if (++depth > kMaxJsonDepth)
+                throw Error(source, "JSON is nested more than " + std::to_string(kMaxJsonDepth) + " levels deep");
+        } else if (c == '}' || c == ']') {
+            --depth;
+        }
+    }
+}
+
+/// Image decoding is off: we never use textures, and decoders are attack surface.
+bool skipImage(tinygltf::Image *, const int, std::string *, std::string *, int, int, const unsigned char *, int,
+               void *) {
+    return true;
+}
+
+std::string firstLines(const std::string &text) {
+    std::string out;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line))
+        if (!line.empty()) out += (out.empty() ? "" : "; ") + line;
+    return out;
+}
+
+} // namespace
+
+Scene loadGltf(const std::filesystem::path &path, const GltfLoadOptions &options) {
+    const std::string source = path.string();
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw Error(source, "file not found");
+    if (!std::filesystem::is_regular_file(path, ec)) throw Error(source, "not a regular file");
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) throw Error(source, "cannot read the file size: " + ec.message());
+    if (size > options.maxFileBytes)
+        throw Error(source, "file is " + std::to_string(size) + " bytes, more than the limit of " +
+                                std::to_string(options.maxFileBytes));
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+    std::ifstream in(path, std::ios::binary);
+    if (!in || (size > 0 && !in.read(reinterpret_cast<char *>(bytes.data()), std::streamsize(size))))
+        throw Error(source, "cannot read the file");
+    std::filesystem::path baseDir = path.parent_path();
+    if (baseDir.empty()) baseDir = ".";
+    return loadGltfFromMemory(bytes, source, baseDir, options);
+}
+
+Scene loadGltfFromMemory(std::span<const std::uint8_t> bytes, const std::string &name,
+                         const std::filesystem::path &baseDir, const GltfLoadOptions &options) {
+    if (bytes.size() > options.maxFileBytes)
+        throw Error(name, "file is " + std::to_string(bytes.size()) + " bytes, more than the limit of " +
+                              std::to_string(options.maxFileBytes));
+    if (bytes.size() >= std::numeric_limits<unsigned int>::max())
+        throw Error(name, "file is 4 GiB or larger, which tinygltf cannot read");
+    if (bytes.empty()) throw Error(name, "file is empty");
+
+    const bool isGlb = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    checkJsonDepth(isGlb ? checkGlb(bytes, name) : bytes, name);
+
+    try {
+        tinygltf::TinyGLTF parser;
+        gltf::GltfFileSandbox sandbox(baseDir, options.maxFileBytes);
+        parser.SetImageLoader(&skipImage, nullptr);
+        parser.SetFsCallbacks(sandbox.callbacks());
+
+        tinygltf::Model model;
+        std::string err, warn;
+        // base_dir "": the sandbox sees each URI as written and resolves it against baseDir itself.
+        const bool ok = isGlb ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                                            static_cast<unsigned int>(bytes.size()), "")
+                              : parser.LoadASCIIFromString(&model, &err, &warn,
+                                                           reinterpret_cast<const char *>(bytes.data()),
+                                                           static_cast<unsigned int>(bytes.size()), "");
+        if (!sandbox.violations().empty()) throw Error(name, sandbox.violations().front());
+        if (!ok) {
+            const std::string detail = firstLines(err);
+            throw Error(name, "not a valid glTF file: " + (detail.empty() ? std::string("tinygltf failed") : detail));
+        }
+
+        Scene scene;
+        scene.name = name;
+        std::istringstream warnings(warn + "\n" + err); // err may hold non-fatal notes on success
+        for (std::string line; std::getline(warnings, line);)
+            if (!line.empty()) scene.report.warnings.push_back("tinygltf: " + line);
+
+        gltf::GltfContext context(model, name, scene.report);
+        gltf::GltfValidator validator(context);
+        validator.validate();
+        gltf::GltfSceneBuilder builder(context, validator, options, scene);
+        builder.build();
+        return scene;
+    } catch (const Error &e) {
+        if (e.source().empty()) throw Error(name, e.problem());
+        throw;
+    } catch (const std::bad_alloc &) {
+        throw Error(name, "out of memory while loading");
+    } catch (const std::exception &e) {
+        throw Error(name, std::string("glTF parse error: ") + e.what());
+    }
+}
+
+} // namespace mvcl
