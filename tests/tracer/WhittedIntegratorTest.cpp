@@ -138,3 +138,26 @@ TEST(WhittedIntegrator, ColourPolicyIsAppliedAfterShading) {
     EXPECT_NEAR(c.g, y, 1e-6f);
     EXPECT_NEAR(c.b, y, 1e-6f);
 }
+
+TEST(WhittedIntegrator, TransparentOccludersPassTheirTransparencyIntoShadows) {
+    // A glass shell of transparency 0.5 between the light and a lit sphere: light passes through
+    // both of the shell's surfaces, so 0.5 · 0.5 of it arrives.
+    Scene s;
+    Material lit;
+    lit.ambient = glm::vec3(0.f);
+    lit.diffuse = glm::vec3(1.f);
+    Material glass = lit;
+    glass.transparency = 0.5f;
+    s.materials = {lit, glass};
+    s.spheres.push_back({"lit", {0.f, 0.f, 0.f}, 1.f, 0, 0});
+    s.spheres.push_back({"shell", {0.f, 3.f, 0.f}, 0.5f, 1, 0});
+    Light light;
+    light.type = LightType::Directional;
+    light.direction = {0.f, -1.f, 0.f};
+    s.lights.push_back(light);
+    const Tracer tracer(s);
+    RayCounters counters;
+    const glm::vec3 c = WhittedIntegrator(tracer).radiance({{0.f, 1.5f, 0.f}, {0.f, -1.f, 0.f}}, {}, counters);
+    EXPECT_NEAR(c.r, 0.25f, 1e-5f);
+    EXPECT_EQ(counters.shadow, 1u);
+}

@@ -1,5 +1,6 @@
 #include <mvcl/tracer/WhittedIntegrator.h>
 
+#include <mvcl/core/FloatBits.h>
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/RayOffset.h>
 #include <mvcl/tracer/Tracer.h>
@@ -28,6 +29,15 @@ float schlickFresnel(float cosTheta, float ior) {
     return r0 + (1.f - r0) * m * m * m * m * m;
 }
 
+uint32_t materialOf(const Scene &scene, const Hit &hit) {
+    switch (hit.kind) {
+    case GeometryKind::Triangle: return scene.meshes[hit.geometry].material;
+    case GeometryKind::Sphere: return scene.spheres[hit.geometry].material;
+    case GeometryKind::Plane: return scene.planes[hit.geometry].material;
+    }
+    return 0;
+}
+
 void countRay(RayType type, RayCounters &counters) {
     switch (type) {
     case RayType::Primary: ++counters.primary; break;
@@ -39,7 +49,34 @@ void countRay(RayType type, RayCounters &counters) {
 
 } // namespace
 
-WhittedIntegrator::WhittedIntegrator(const Tracer &tracer) : m_tracer(tracer) {}
+WhittedIntegrator::WhittedIntegrator(const Tracer &tracer) : m_tracer(tracer) {
+    for (const Material &m : tracer.scene().materials)
+        if (m.transparency > 0.f) m_hasTransparentMaterials = true;
+}
+
+float WhittedIntegrator::lightPassing(const Ray &shadowRay, float lightDistance,
+                                      const RayPolicy &policy, RayCounters &counters) const {
+    RayQuery query = policy.query(RayType::Shadow);
+    query.tMax = std::min(query.tMax, lightDistance);
+    countRay(RayType::Shadow, counters);
+    // Opaque scenes need only "is anything in the way" (any-hit, the cheap query).
+    if (!m_hasTransparentMaterials) return m_tracer.anyHit(shadowRay, query) ? 0.f : 1.f;
+
+    // Transparent occluders let their transparency through (Whitted's transparent shadows):
+    // walk the hits along the same ray, each step starting just past the previous hit.
+    constexpr int kMaxOccluders = 16;
+    const Scene &scene = m_tracer.scene();
+    float passed = 1.f;
+    for (int i = 0; i < kMaxOccluders; ++i) {
+        Hit hit;
+        if (!m_tracer.closestHit(shadowRay, query, hit)) return passed;
+        passed *= std::clamp(scene.materials[materialOf(scene, hit)].transparency, 0.f, 1.f);
+        if (passed <= 0.f) return 0.f;
+        query.tMin = nextFloatUp(hit.t);
+        if (query.tMin > query.tMax) return passed;
+    }
+    return 0.f; // more occluders than we follow: treat the light as blocked
+}
 
 glm::vec3 WhittedIntegrator::radiance(const Ray &primaryRay, const RayPolicy &policy,
                                       RayCounters &counters) const {
@@ -90,12 +127,11 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth,
 
         glm::vec3 transmittance(1.f);
         if (shading.shadows) {
-            Ray shadowRay{offsetRayOrigin(si.position, si.positionError, ng, toLight), toLight};
-            RayQuery query = policy.query(RayType::Shadow);
-            query.tMax = std::min(query.tMax, distance);
-            countRay(RayType::Shadow, counters);
-            if (m_tracer.anyHit(shadowRay, query))
-                transmittance = glm::mix(glm::vec3(1.f), shading.shadowTint, shading.shadowStrength);
+            const Ray shadowRay{offsetRayOrigin(si.position, si.positionError, ng, toLight), toLight};
+            const float passed = lightPassing(shadowRay, distance, policy, counters);
+            // The blocked share of the light is dimmed by the policy's strength and tint.
+            const glm::vec3 blocked = glm::mix(glm::vec3(1.f), shading.shadowTint, shading.shadowStrength);
+            transmittance = glm::vec3(passed) + (1.f - passed) * blocked;
         }
         const glm::vec3 h = glm::normalize(toLight - d);
         const float nDotH = std::max(glm::dot(ns, h), 0.f);

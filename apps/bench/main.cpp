@@ -1,0 +1,363 @@
+// mvcl-bench: our tracer side by side with Embree 3 on the same mesh, the same rays and the same
+// thread count, in one run. Measures BVH build, primary rays (closestHit vs rtcIntersect1) and
+// shadow rays toward a point light (anyHit vs rtcOccluded1), and checks that the hits agree.
+//
+//   mvcl-bench [model.glb | builtin:<name>] [--size WxH] [--threads N] [--repeat R]
+
+#include <mvcl/model/BuiltinScenes.h>
+#include <mvcl/model/GltfLoader.h>
+#include <mvcl/model/Scene.h>
+#include <mvcl/tracer/RayOffset.h>
+#include <mvcl/tracer/Tracer.h>
+
+#ifdef MVCL_HAVE_EMBREE
+#include <embree3/rtcore.h>
+#endif
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <exception>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Runs f(i) for i in [0, n) on `threads` threads, in chunks handed out dynamically.
+template <class F>
+void parallelFor(int n, int threads, const F &f) {
+    std::atomic<int> next{0};
+    constexpr int kChunk = 256;
+    auto worker = [&] {
+        for (;;) {
+            const int begin = next.fetch_add(kChunk);
+            if (begin >= n) return;
+            const int end = std::min(n, begin + kChunk);
+            for (int i = begin; i < end; ++i) f(i);
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (std::thread &t : pool) t.join();
+}
+
+/// Best (shortest) wall time of `repeat` runs of f.
+template <class F>
+double bestSeconds(int repeat, const F &f) {
+    double best = 1e300;
+    for (int r = 0; r < repeat; ++r) {
+        const auto start = Clock::now();
+        f();
+        best = std::min(best, secondsSince(start));
+    }
+    return best;
+}
+
+struct Options {
+    std::string model = "tests/data/models/2CylinderEngine/2CylinderEngine.glb";
+    int width = 1024;
+    int height = 1024;
+    int threads = 0;
+    int repeat = 3;
+};
+
+Options parseOptions(int argc, char **argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--size") {
+            const std::string v = value();
+            if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width <= 0 ||
+                o.height <= 0)
+                throw std::runtime_error("--size expects WxH, got '" + v + "'");
+        } else if (a == "--threads") {
+            o.threads = std::stoi(value());
+        } else if (a == "--repeat") {
+            o.repeat = std::max(1, std::stoi(value()));
+        } else if (a == "--help" || a == "-h") {
+            std::puts("usage: mvcl-bench [model.glb | builtin:<name>] [--size WxH] [--threads N] "
+                      "[--repeat R]");
+            std::exit(0);
+        } else if (!a.empty() && a[0] == '-') {
+            throw std::runtime_error("unknown option " + a);
+        } else {
+            o.model = a;
+        }
+    }
+    if (o.threads <= 0) o.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    return o;
+}
+
+/// Only the triangle meshes: both tracers get exactly the same geometry.
+mvcl::Scene meshesOnly(mvcl::Scene scene) {
+    scene.spheres.clear();
+    scene.planes.clear();
+    return scene;
+}
+
+struct Rays {
+    std::vector<mvcl::Ray> rays;
+    std::vector<float> tMax;
+};
+
+/// A pinhole camera framing the scene bounds from a three-quarter view.
+Rays primaryRays(const mvcl::Scene &scene, int width, int height) {
+    const mvcl::Bounds3f b = scene.bounds();
+    const glm::vec3 center = b.center();
+    const float radius = std::max(1e-6f, 0.5f * glm::length(b.extent()));
+    const float fov = glm::radians(40.f);
+    const float distance = radius / std::sin(0.5f * fov);
+    const glm::vec3 eye = center + distance * glm::normalize(glm::vec3(0.6f, 0.45f, 0.75f));
+    const glm::vec3 forward = glm::normalize(center - eye);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0.f, 1.f, 0.f)));
+    const glm::vec3 up = glm::cross(right, forward);
+    const float tanHalf = std::tan(0.5f * fov);
+    const float aspect = float(width) / float(height);
+    Rays r;
+    r.rays.reserve(std::size_t(width) * height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const float sx = (2.f * (float(x) + 0.5f) / float(width) - 1.f) * tanHalf * aspect;
+            const float sy = (1.f - 2.f * (float(y) + 0.5f) / float(height)) * tanHalf;
+            r.rays.push_back({eye, glm::normalize(forward + sx * right + sy * up)});
+        }
+    r.tMax.assign(r.rays.size(), std::numeric_limits<float>::infinity());
+    return r;
+}
+
+double mrays(std::size_t n, double seconds) { return double(n) / seconds * 1e-6; }
+
+#ifdef MVCL_HAVE_EMBREE
+std::atomic<long long> g_embreeBytes{0};
+std::atomic<long long> g_embreePeak{0};
+
+bool embreeMemoryMonitor(void *, ssize_t bytes, bool) {
+    const long long now = g_embreeBytes.fetch_add(bytes) + bytes;
+    long long peak = g_embreePeak.load();
+    while (now > peak && !g_embreePeak.compare_exchange_weak(peak, now)) {
+    }
+    return true;
+}
+
+RTCScene buildEmbree(RTCDevice device, const mvcl::Scene &scene) {
+    RTCScene es = rtcNewScene(device);
+    rtcSetSceneBuildQuality(es, RTC_BUILD_QUALITY_MEDIUM);
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        const mvcl::TriangleMesh &mesh = scene.meshes[m];
+        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        // Shared buffers: Embree reads our arrays directly (it needs 16 bytes of padding after
+        // the last vertex, which a std::vector<vec3> does not guarantee, so copy the vertices).
+        auto *v = static_cast<float *>(rtcSetNewGeometryBuffer(
+            g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+            mesh.positions.size()));
+        for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+            v[3 * i] = mesh.positions[i].x;
+            v[3 * i + 1] = mesh.positions[i].y;
+            v[3 * i + 2] = mesh.positions[i].z;
+        }
+        auto *idx = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
+            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+            mesh.indices.size()));
+        for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
+            idx[3 * i] = mesh.indices[i].x;
+            idx[3 * i + 1] = mesh.indices[i].y;
+            idx[3 * i + 2] = mesh.indices[i].z;
+        }
+        rtcCommitGeometry(g);
+        rtcAttachGeometryByID(es, g, unsigned(m));
+        rtcReleaseGeometry(g);
+    }
+    rtcCommitScene(es);
+    return es;
+}
+#endif
+
+void printRow(const char *what, double ours, double embree, const char *unit, bool higherIsBetter) {
+    if (embree > 0.0)
+        std::printf("%-22s ours %10.3f %-8s embree %10.3f %-8s ratio ours/embree %.3f%s\n", what,
+                    ours, unit, embree, unit, ours / embree,
+                    higherIsBetter ? "" : " (lower is better)");
+    else
+        std::printf("%-22s ours %10.3f %s\n", what, ours, unit);
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    try {
+        const Options opt = parseOptions(argc, argv);
+        const auto loadStart = Clock::now();
+        const mvcl::Scene scene = meshesOnly(opt.model.rfind("builtin:", 0) == 0
+                                                 ? mvcl::makeBuiltinScene(opt.model.substr(8))
+                                                 : mvcl::loadGltf(opt.model));
+        std::printf("model %s: %zu meshes, %zu triangles, loaded in %.1f ms\n", opt.model.c_str(),
+                    scene.meshes.size(), scene.triangleCount(), secondsSince(loadStart) * 1e3);
+        std::printf("%dx%d primary rays, %d threads, best of %d runs\n", opt.width, opt.height,
+                    opt.threads, opt.repeat);
+
+        // --- Build ---
+        mvcl::TracerSettings settings;
+        settings.buildThreads = opt.threads;
+        std::unique_ptr<mvcl::Tracer> tracer;
+        const double oursBuild = bestSeconds(opt.repeat, [&] {
+            tracer.reset();
+            tracer = std::make_unique<mvcl::Tracer>(scene, settings);
+        });
+        const mvcl::TracerBuildStats &st = tracer->buildStats();
+
+        double embreeBuild = 0.0;
+#ifdef MVCL_HAVE_EMBREE
+        const std::string config = "threads=" + std::to_string(opt.threads);
+        RTCDevice device = rtcNewDevice(config.c_str());
+        rtcSetDeviceMemoryMonitorFunction(device, embreeMemoryMonitor, nullptr);
+        RTCScene escene = nullptr;
+        long long embreeBytes = 0;
+        embreeBuild = bestSeconds(opt.repeat, [&] {
+            if (escene) rtcReleaseScene(escene);
+            const long long before = g_embreeBytes.load();
+            escene = buildEmbree(device, scene);
+            embreeBytes = g_embreeBytes.load() - before;
+        });
+#endif
+        std::printf("\nours: %zu triangles, %zu nodes, %zu leaves, depth %d\n", st.triangles,
+                    st.nodes, st.leaves, st.maxDepth);
+        printRow("build", oursBuild * 1e3, embreeBuild * 1e3, "ms", false);
+
+        // --- Primary rays ---
+        const Rays primary = primaryRays(scene, opt.width, opt.height);
+        const int n = int(primary.rays.size());
+        std::vector<mvcl::Hit> hits(n);
+        std::vector<char> found(n);
+        const mvcl::RayQuery primaryQuery; // made once, as a renderer would per frame
+        const double oursPrimary = bestSeconds(opt.repeat, [&] {
+            parallelFor(n, opt.threads, [&](int i) {
+                found[i] = tracer->closestHit(primary.rays[i], primaryQuery, hits[i]);
+            });
+        });
+
+        // Shadow rays from our primary hits toward a point light above and behind the camera.
+        const mvcl::Bounds3f b = scene.bounds();
+        const glm::vec3 light =
+            b.center() + glm::length(b.extent()) * glm::vec3(0.4f, 1.2f, 0.6f);
+        std::vector<mvcl::Ray> shadow;
+        shadow.reserve(n);
+        for (int i = 0; i < n; ++i) {
+            if (!found[i]) continue;
+            const mvcl::SurfaceInteraction si = tracer->interaction(primary.rays[i], hits[i]);
+            const glm::vec3 o =
+                mvcl::offsetRayOrigin(si.position, si.positionError, si.geometricNormal,
+                                      light - si.position);
+            shadow.push_back({o, light - o}); // t in (0, 1) reaches the light
+        }
+        const int ns = int(shadow.size());
+        mvcl::RayQuery shadowQuery;
+        shadowQuery.tMax = 1.f - 1e-4f;
+        std::vector<char> occluded(ns);
+        const double oursShadow = bestSeconds(opt.repeat, [&] {
+            parallelFor(ns, opt.threads,
+                        [&](int i) { occluded[i] = tracer->anyHit(shadow[i], shadowQuery); });
+        });
+
+        double embreePrimary = 0.0, embreeShadow = 0.0;
+#ifdef MVCL_HAVE_EMBREE
+        std::vector<RTCRayHit> eh(n);
+        embreePrimary = bestSeconds(opt.repeat, [&] {
+            parallelFor(n, opt.threads, [&](int i) {
+                RTCIntersectContext ctx;
+                rtcInitIntersectContext(&ctx);
+                RTCRayHit &rh = eh[i];
+                const mvcl::Ray &r = primary.rays[i];
+                rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
+                rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y,
+                rh.ray.dir_z = r.direction.z;
+                rh.ray.tnear = 0.f;
+                rh.ray.tfar = std::numeric_limits<float>::infinity();
+                rh.ray.mask = ~0u;
+                rh.ray.flags = 0;
+                rh.ray.time = 0.f;
+                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                rtcIntersect1(escene, &ctx, &rh);
+            });
+        });
+        std::vector<char> eOccluded(ns);
+        embreeShadow = bestSeconds(opt.repeat, [&] {
+            parallelFor(ns, opt.threads, [&](int i) {
+                RTCIntersectContext ctx;
+                rtcInitIntersectContext(&ctx);
+                RTCRay ray;
+                const mvcl::Ray &r = shadow[i];
+                ray.org_x = r.origin.x, ray.org_y = r.origin.y, ray.org_z = r.origin.z;
+                ray.dir_x = r.direction.x, ray.dir_y = r.direction.y, ray.dir_z = r.direction.z;
+                ray.tnear = 0.f;
+                ray.tfar = shadowQuery.tMax;
+                ray.mask = ~0u;
+                ray.flags = 0;
+                ray.time = 0.f;
+                rtcOccluded1(escene, &ctx, &ray);
+                eOccluded[i] = ray.tfar < 0.f; // Embree sets tfar = −inf when occluded
+            });
+        });
+#endif
+        std::printf("\n");
+        printRow("primary (closestHit)", mrays(n, oursPrimary), embreePrimary > 0 ? mrays(n, embreePrimary) : 0.0,
+                 "Mrays/s", true);
+        printRow("shadow (anyHit)", mrays(ns, oursShadow), embreeShadow > 0 ? mrays(ns, embreeShadow) : 0.0,
+                 "Mrays/s", true);
+        std::printf("%-22s ours %10.2f MB", "memory", double(st.memoryBytes) / (1 << 20));
+#ifdef MVCL_HAVE_EMBREE
+        std::printf("   embree %10.2f MB (scene allocations)", double(embreeBytes) / (1 << 20));
+#endif
+        std::printf("\nprimary hits: %d of %d rays; shadow rays: %d, occluded: %ld\n",
+                    int(std::count(found.begin(), found.end(), 1)), n, ns,
+                    long(std::count(occluded.begin(), occluded.end(), 1)));
+
+#ifdef MVCL_HAVE_EMBREE
+        // Agreement: same hit/miss, same mesh and triangle, t within a relative 1e-4.
+        int sameHitMiss = 0, samePrim = 0, closeT = 0, bothHit = 0;
+        for (int i = 0; i < n; ++i) {
+            const bool eHit = eh[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+            if (eHit != bool(found[i])) continue;
+            ++sameHitMiss;
+            if (!eHit) continue;
+            ++bothHit;
+            if (eh[i].hit.geomID == hits[i].geometry && eh[i].hit.primID == hits[i].primitive)
+                ++samePrim;
+            if (std::fabs(eh[i].ray.tfar - hits[i].t) <= 1e-4f * std::max(1.f, hits[i].t)) ++closeT;
+        }
+        int sameOcclusion = 0;
+        for (int i = 0; i < ns; ++i) sameOcclusion += eOccluded[i] == occluded[i];
+        std::printf("agreement with embree: hit/miss %.4f%%, same mesh+triangle %.4f%% of common "
+                    "hits, |dt| <= 1e-4 t %.4f%%, shadow %.4f%%\n",
+                    100.0 * sameHitMiss / n, bothHit ? 100.0 * samePrim / bothHit : 100.0,
+                    bothHit ? 100.0 * closeT / bothHit : 100.0, ns ? 100.0 * sameOcclusion / ns : 100.0);
+        rtcReleaseScene(escene);
+        rtcReleaseDevice(device);
+#endif
+        return 0;
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "mvcl-bench: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,57 @@
+#pragma once
+// Private: the 4-wide BVH the tracer traverses, collapsed from the binary SAH tree. Four child
+// boxes per node are tested at once with SSE (SoA layout), which halves the node visits of the
+// binary tree and does the slab arithmetic four lanes at a time. Leaves point at PrimBlocks.
+
+#include "Bvh.h"
+#include "PrimBlock.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace mvcl::detail {
+
+/// 128 bytes (two cache lines). Lane i describes child i; an empty lane has an empty box and a
+/// zero layer mask so no query ever enters it.
+struct alignas(64) Bvh4Node {
+    float bounds[6][4];     ///< [min x, min y, min z, max x, max y, max z][lane]
+    uint32_t child[4];      ///< Bvh4Leaf encoding when the top bits are non-zero, else the index
+                            ///< of a Bvh4Node
+    uint32_t layerMask[4];  ///< union of the layer bits below each child
+};
+static_assert(sizeof(Bvh4Node) == 128);
+
+/// A child reference that is a leaf: bits 31..28 the number of PrimBlocks (1..4), bits 27..1
+/// the first block, bit 0 set when a lane of the leaf is a sphere (the 4-wide triangle kernel
+/// skips sphere lanes; only then does the leaf need the scalar sphere loop).
+struct Bvh4Leaf {
+    static constexpr uint32_t kCountShift = 28;
+    static constexpr uint32_t kMaxBlocks = 4; ///< BvhNode::kMaxLeafCount primitives at most
+
+    static uint32_t encode(uint32_t firstBlock, uint32_t blockCount, bool hasSpheres) {
+        return (blockCount << kCountShift) | (firstBlock << 1) | uint32_t(hasSpheres);
+    }
+    static bool isLeaf(uint32_t ref) { return (ref >> kCountShift) != 0; }
+    static uint32_t blockCount(uint32_t ref) { return ref >> kCountShift; }
+    static uint32_t firstBlock(uint32_t ref) { return (ref & ((1u << kCountShift) - 1u)) >> 1; }
+    static bool hasSpheres(uint32_t ref) { return ref & 1u; }
+};
+
+struct Bvh4 {
+    std::unique_ptr<Bvh4Node[], AlignedFree> nodes;
+    std::size_t nodeCount = 0;
+    uint32_t root = 0;     ///< child reference of the root (a leaf for tiny scenes)
+    uint32_t rootMask = 0; ///< layer mask of everything
+    float rootBounds[6] = {};
+    std::unique_ptr<PrimBlock[], AlignedFree> blocks; ///< leaf primitives, in traversal-DFS order
+    std::size_t blockCount = 0;
+    std::vector<PrimInfo> info; ///< 4 per block
+};
+
+/// Collapses a binary BVH (root at node 0) into a 4-wide one, pulling up the grandchildren with
+/// the largest surface area first, and packs the leaves' primitives into PrimBlocks.
+Bvh4 collapseToBvh4(const Bvh &bvh);
+
+} // namespace mvcl::detail

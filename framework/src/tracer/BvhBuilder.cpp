@@ -1,0 +1,397 @@
+// Binned SAH BVH build (Wald 2007 style binning, up to 32 bins, all three axes in one pass),
+// parallel over the top-level splits. Each node receives its bounds and centroid bounds from
+// its parent (the partition pass computes them for both children), so a node reads its
+// primitives twice: once to bin, once to partition. The tree depends only on the input, never
+// on the thread count; only the slots of child pairs (taken from an atomic counter) do, and
+// the 4-wide collapse lays out its output independently of them.
+
+#include "Bvh.h"
+
+#include <glm/common.hpp>
+
+#include <mvcl/core/Error.h>
+#include <mvcl/core/FloatBits.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <future>
+#include <limits>
+#include <new>
+#include <string>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace mvcl::detail {
+
+void AlignedFree::operator()(void *p) const { std::free(p); }
+
+void *allocateAligned(std::size_t bytes) {
+    void *p = std::aligned_alloc(64, std::max<std::size_t>(64, (bytes + 63) / 64 * 64));
+    if (!p) throw std::bad_alloc();
+    return p;
+}
+
+namespace {
+
+constexpr int kBins = 32;
+/// A subtree deeper than this is split at the object median: keeps the traversal stack bounded
+/// for adversarial input (the stack holds at most depth entries).
+constexpr int kMaxSahDepth = 64;
+/// Below this many primitives a subtree is built on the calling thread (task overhead).
+constexpr uint32_t kMinParallelPrims = 4096;
+/// SAH cost of a node visit relative to one block (four primitives) of a leaf.
+constexpr double kTraversalCost = 1.0;
+/// Leaves are intersected four primitives at a time (PrimBlock): a leaf of 1..4 costs the same.
+constexpr uint32_t kBlockSize = 4;
+
+uint32_t blocksOf(uint32_t count) { return (count + kBlockSize - 1) / kBlockSize; }
+
+/// 32 bytes, 16-aligned: lo and hi each load as 4 floats (the fourth lane is ignored).
+struct alignas(16) BuildPrim {
+    glm::vec3 lo;
+    uint32_t id;
+    glm::vec3 hi;
+    uint32_t layerBit;
+};
+static_assert(sizeof(BuildPrim) == 32);
+
+double halfArea(const glm::vec3 &lo, const glm::vec3 &hi) {
+    const double dx = double(hi.x) - double(lo.x);
+    const double dy = double(hi.y) - double(lo.y);
+    const double dz = double(hi.z) - double(lo.z);
+    return dx * dy + dy * dz + dz * dx;
+}
+
+/// Bounds grown four lanes at a time (SSE when available); lane 3 is ignored.
+struct Box4 {
+#if defined(__SSE2__)
+    __m128 lo = _mm_set1_ps(std::numeric_limits<float>::infinity());
+    __m128 hi = _mm_set1_ps(-std::numeric_limits<float>::infinity());
+    void grow(__m128 pLo, __m128 pHi) {
+        lo = _mm_min_ps(lo, pLo);
+        hi = _mm_max_ps(hi, pHi);
+    }
+    void grow(const Box4 &b) { grow(b.lo, b.hi); }
+    void growPoint(__m128 p) { grow(p, p); }
+    glm::vec3 min() const { return toVec3(lo); }
+    glm::vec3 max() const { return toVec3(hi); }
+    static glm::vec3 toVec3(__m128 v) {
+        alignas(16) float f[4];
+        _mm_store_ps(f, v);
+        return {f[0], f[1], f[2]};
+    }
+#else
+    glm::vec3 lo{std::numeric_limits<float>::infinity()};
+    glm::vec3 hi{-std::numeric_limits<float>::infinity()};
+    void grow(const glm::vec3 &pLo, const glm::vec3 &pHi) {
+        lo = glm::min(lo, pLo);
+        hi = glm::max(hi, pHi);
+    }
+    void grow(const Box4 &b) { grow(b.lo, b.hi); }
+    void growPoint(const glm::vec3 &p) { grow(p, p); }
+    glm::vec3 min() const { return lo; }
+    glm::vec3 max() const { return hi; }
+#endif
+};
+
+/// The loads of one primitive: its box and its centroid (lo/2 + hi/2, which cannot overflow for
+/// huge coordinates).
+#if defined(__SSE2__)
+struct PrimLanes {
+    __m128 lo, hi, c;
+    // The fourth lane (id, layer bit) is cleared: as a float it is a denormal, slow to multiply.
+    explicit PrimLanes(const BuildPrim &p)
+        : lo(_mm_and_ps(_mm_load_ps(&p.lo.x), xyzMask())),
+          hi(_mm_and_ps(_mm_load_ps(&p.hi.x), xyzMask())),
+          c(_mm_add_ps(_mm_mul_ps(lo, _mm_set1_ps(0.5f)), _mm_mul_ps(hi, _mm_set1_ps(0.5f)))) {}
+    static __m128 xyzMask() { return _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0)); }
+    float centroid(int axis) const {
+        alignas(16) float f[4];
+        _mm_store_ps(f, c);
+        return f[axis];
+    }
+};
+#else
+struct PrimLanes {
+    glm::vec3 lo, hi, c;
+    explicit PrimLanes(const BuildPrim &p) : lo(p.lo), hi(p.hi), c(0.5f * p.lo + 0.5f * p.hi) {}
+    float centroid(int axis) const { return c[axis]; }
+};
+#endif
+
+/// Geometry and centroid bounds of a primitive range.
+struct RangeBounds {
+    Box4 box;
+    Box4 cbox;
+    void grow(const PrimLanes &p) {
+        box.grow(p.lo, p.hi);
+        cbox.growPoint(p.c);
+    }
+};
+
+RangeBounds boundsOf(const BuildPrim *prims, uint32_t begin, uint32_t end) {
+    RangeBounds r;
+    for (uint32_t i = begin; i < end; ++i) r.grow(PrimLanes(prims[i]));
+    return r;
+}
+
+struct Bin {
+    Box4 box;
+    uint32_t count = 0;
+};
+
+/// Maps centroids to bins on all three axes with the same float arithmetic as binOf() below
+/// ((c − cmin) · scale, truncated, clamped), so binning and partitioning always agree.
+struct Binner {
+    glm::vec3 cmin;
+    glm::vec3 scale;
+    int nBins;
+
+    int binOf(const PrimLanes &p, int axis) const {
+        const int b = int((p.centroid(axis) - cmin[axis]) * scale[axis]);
+        return b < nBins - 1 ? b : nBins - 1; // ≥ 0 by construction (c ≥ cmin, scale ≥ 0)
+    }
+    void binsOf(const PrimLanes &p, int out[4]) const {
+#if defined(__SSE2__)
+        const __m128 rel = _mm_sub_ps(p.c, _mm_setr_ps(cmin.x, cmin.y, cmin.z, 0.f));
+        const __m128i b = _mm_cvttps_epi32(_mm_mul_ps(rel, _mm_setr_ps(scale.x, scale.y, scale.z, 0.f)));
+        // min(b, nBins − 1) with SSE2 compares (pminsd is SSE4.1).
+        const __m128i last = _mm_set1_epi32(nBins - 1);
+        const __m128i over = _mm_cmpgt_epi32(b, last);
+        const __m128i clamped = _mm_or_si128(_mm_and_si128(over, last), _mm_andnot_si128(over, b));
+        _mm_storeu_si128(reinterpret_cast<__m128i *>(out), clamped);
+#else
+        for (int axis = 0; axis < 3; ++axis) out[axis] = binOf(p, axis);
+#endif
+    }
+};
+
+class Builder {
+public:
+    Builder(BuildPrim *prims, BvhNode *slots, int maxLeaf, int spawnDepth)
+        : m_prims(prims), m_slots(slots), m_maxLeaf(maxLeaf), m_spawnDepth(spawnDepth) {}
+
+    /// Builds the subtree of [begin, end) into `slot`; `bounds` are that range's bounds.
+    void build(uint32_t slot, uint32_t begin, uint32_t end, int depth, const RangeBounds &bounds) {
+        const glm::vec3 lo = bounds.box.min(), hi = bounds.box.max();
+        const glm::vec3 clo = bounds.cbox.min(), chi = bounds.cbox.max();
+        BvhNode &node = m_slots[slot];
+        node.bounds[0] = lo.x, node.bounds[1] = lo.y, node.bounds[2] = lo.z;
+        node.bounds[3] = hi.x, node.bounds[4] = hi.y, node.bounds[5] = hi.z;
+        noteDepth(depth);
+
+        const uint32_t n = end - begin;
+        if (n == 1) return makeLeaf(node, begin, n);
+
+        // Fewer bins for small nodes: initialising 3 × 32 bins dominates the cost near the leaves.
+        Binner binner{clo, glm::vec3(0.f), int(std::min<uint32_t>(kBins, std::max<uint32_t>(4, n)))};
+        for (int axis = 0; axis < 3; ++axis) {
+            const float extent = chi[axis] - clo[axis];
+            const float scale = float(binner.nBins) * (1.f - 1.f / 4096.f) / extent;
+            // A flat axis (or an overflowing extent) bins everything into bin 0: no split there.
+            binner.scale[axis] = extent > 0.f && std::isfinite(scale) ? scale : 0.f;
+        }
+        int bestAxis = -1, bestSplit = -1;
+        double bestCost = std::numeric_limits<double>::infinity();
+        if (depth < kMaxSahDepth) findSplit(binner, begin, end, bestAxis, bestSplit, bestCost);
+
+        const double area = halfArea(lo, hi);
+        const double splitCost =
+            bestAxis >= 0 && area > 0.0 ? kTraversalCost + bestCost / area
+                                        : std::numeric_limits<double>::infinity();
+        if (n <= uint32_t(m_maxLeaf) && double(blocksOf(n)) <= splitCost)
+            return makeLeaf(node, begin, n);
+
+        uint32_t mid;
+        RangeBounds left, right;
+        if (bestAxis >= 0) {
+            mid = partition(binner, bestAxis, bestSplit, begin, end, left, right);
+        } else {
+            // No usable split (coincident centroids, or too deep): object median along the
+            // widest centroid axis, ties by id so the result is deterministic.
+            const glm::vec3 ce = chi - clo;
+            const int axis = (ce.x >= ce.y && ce.x >= ce.z) ? 0 : (ce.y >= ce.z ? 1 : 2);
+            mid = begin + n / 2;
+            std::nth_element(m_prims + begin, m_prims + mid, m_prims + end,
+                             [axis](const BuildPrim &a, const BuildPrim &b) {
+                                 const float ca = PrimLanes(a).centroid(axis);
+                                 const float cb = PrimLanes(b).centroid(axis);
+                                 return ca != cb ? ca < cb : a.id < b.id;
+                             });
+            left = boundsOf(m_prims, begin, mid);
+            right = boundsOf(m_prims, mid, end);
+        }
+
+        const uint32_t base = m_nextSlot.fetch_add(2, std::memory_order_relaxed);
+        node.index = base; // interior: children at base, base + 1
+        if (depth < m_spawnDepth && n >= kMinParallelPrims) {
+            auto leftTask = std::async(std::launch::async, [&, base, begin, mid, depth, this] {
+                build(base, begin, mid, depth + 1, left);
+            });
+            build(base + 1, mid, end, depth + 1, right);
+            leftTask.get();
+        } else {
+            build(base, begin, mid, depth + 1, left);
+            build(base + 1, mid, end, depth + 1, right);
+        }
+        node.layerMask = m_slots[base].layerMask | m_slots[base + 1].layerMask;
+    }
+
+    int maxDepth() const { return m_maxDepth.load(); }
+    std::size_t leafCount() const { return m_leafCount.load(); }
+    uint32_t slotsUsed() const { return m_nextSlot.load(); }
+
+private:
+    /// One pass bins all three axes; then a sweep per axis evaluates every bin boundary with the
+    /// leaf cost of each side counted in blocks.
+    void findSplit(const Binner &binner, uint32_t begin, uint32_t end, int &bestAxis,
+                   int &bestSplit, double &bestCost) const {
+        const int nBins = binner.nBins;
+        Bin bins[3][kBins];
+        for (uint32_t i = begin; i < end; ++i) {
+            const PrimLanes p(m_prims[i]);
+            alignas(16) int b[4];
+            binner.binsOf(p, b);
+            for (int axis = 0; axis < 3; ++axis) {
+                bins[axis][b[axis]].box.grow(p.lo, p.hi);
+                ++bins[axis][b[axis]].count;
+            }
+        }
+        for (int axis = 0; axis < 3; ++axis) {
+            if (binner.scale[axis] == 0.f) continue;
+            const Bin *axisBins = bins[axis];
+            double rightCost[kBins];
+            Bin acc;
+            for (int b = nBins - 1; b > 0; --b) {
+                acc.box.grow(axisBins[b].box);
+                acc.count += axisBins[b].count;
+                rightCost[b] = acc.count ? halfArea(acc.box.min(), acc.box.max()) * blocksOf(acc.count)
+                                         : -1.0;
+            }
+            acc = Bin{};
+            for (int b = 0; b < nBins - 1; ++b) {
+                acc.box.grow(axisBins[b].box);
+                acc.count += axisBins[b].count;
+                if (acc.count == 0 || rightCost[b + 1] < 0.0) continue;
+                const double cost =
+                    halfArea(acc.box.min(), acc.box.max()) * blocksOf(acc.count) + rightCost[b + 1];
+                if (cost < bestCost) bestCost = cost, bestAxis = axis, bestSplit = b;
+            }
+        }
+    }
+
+    /// In-place partition by bin (≤ split goes left), computing both sides' bounds on the way.
+    /// Sequential and deterministic.
+    uint32_t partition(const Binner &binner, int axis, int split, uint32_t begin, uint32_t end,
+                       RangeBounds &left, RangeBounds &right) {
+        uint32_t i = begin, j = end;
+        for (;;) {
+            while (i < j) {
+                const PrimLanes p(m_prims[i]);
+                if (binner.binOf(p, axis) > split) break;
+                left.grow(p);
+                ++i;
+            }
+            while (i < j) {
+                const PrimLanes p(m_prims[j - 1]);
+                if (binner.binOf(p, axis) <= split) break;
+                right.grow(p);
+                --j;
+            }
+            if (i == j) return i;
+            // prims[i] belongs right, prims[j − 1] left.
+            std::swap(m_prims[i], m_prims[j - 1]);
+            left.grow(PrimLanes(m_prims[i]));
+            right.grow(PrimLanes(m_prims[j - 1]));
+            ++i;
+            --j;
+        }
+    }
+
+    void makeLeaf(BvhNode &node, uint32_t begin, uint32_t n) {
+        node.index = (n << BvhNode::kCountShift) | begin;
+        uint32_t mask = 0;
+        for (uint32_t i = begin; i < begin + n; ++i) mask |= m_prims[i].layerBit;
+        node.layerMask = mask;
+        m_leafCount.fetch_add(1, std::memory_order_relaxed);
+    }
+
+    void noteDepth(int depth) {
+        int cur = m_maxDepth.load(std::memory_order_relaxed);
+        while (depth > cur && !m_maxDepth.compare_exchange_weak(cur, depth)) {
+        }
+    }
+
+    BuildPrim *m_prims;
+    BvhNode *m_slots;
+    int m_maxLeaf;
+    int m_spawnDepth;
+    std::atomic<uint32_t> m_nextSlot{1}; ///< slot 0 is the root
+    std::atomic<int> m_maxDepth{0};
+    std::atomic<std::size_t> m_leafCount{0};
+};
+
+std::unique_ptr<BvhNode[], AlignedFree> allocateNodes(std::size_t count) {
+    return std::unique_ptr<BvhNode[], AlignedFree>(
+        static_cast<BvhNode *>(allocateAligned(count * sizeof(BvhNode))));
+}
+
+} // namespace
+
+Bvh buildBvh(BvhBuildInput input) {
+    Bvh bvh;
+    const std::size_t n = input.prims.size();
+    if (n == 0) return bvh;
+    if (n >= (std::size_t(1) << (BvhNode::kCountShift - 1)))
+        throw Error("tracer", "too many primitives for the BVH (" + std::to_string(n) + ")");
+
+    std::vector<BuildPrim> build(n);
+    RangeBounds rootBounds;
+    for (std::size_t i = 0; i < n; ++i) {
+        const PrimRecord &r = input.prims[i];
+        BuildPrim &b = build[i];
+        if (r.kind == uint8_t(PrimKind::Sphere)) {
+            const glm::vec3 rad(r.p1.x);
+            b.lo = r.p0 - rad;
+            b.hi = r.p0 + rad;
+            // Round outward: c ± r is rounded to nearest and could cut the sphere by an ulp.
+            for (int k = 0; k < 3; ++k) {
+                b.lo[k] = nextFloatDown(b.lo[k]);
+                b.hi[k] = nextFloatUp(b.hi[k]);
+            }
+        } else {
+            b.lo = glm::min(r.p0, glm::min(r.p1, r.p2));
+            b.hi = glm::max(r.p0, glm::max(r.p1, r.p2));
+        }
+        b.id = uint32_t(i);
+        b.layerBit = 1u << r.layer;
+        rootBounds.grow(PrimLanes(b));
+    }
+
+    const int maxLeaf = std::clamp(input.maxLeafSize, 1, int(BvhNode::kMaxLeafCount));
+    int spawnDepth = 0;
+    if (input.threads > 1) {
+        // A few more tasks than threads so uneven splits still keep every core busy.
+        while ((1 << spawnDepth) < input.threads) ++spawnDepth;
+        spawnDepth += 2;
+    }
+
+    // At most n leaves, so at most 2n − 1 nodes; pages past the ones used are never touched.
+    bvh.nodes = allocateNodes(2 * n);
+    Builder builder(build.data(), bvh.nodes.get(), maxLeaf, spawnDepth);
+    builder.build(0, 0, uint32_t(n), 0, rootBounds);
+
+    bvh.nodeCount = builder.slotsUsed();
+    bvh.leafCount = builder.leafCount();
+    bvh.maxDepth = builder.maxDepth();
+    bvh.order.resize(n);
+    for (std::size_t i = 0; i < n; ++i) bvh.order[i] = build[i].id;
+    bvh.prims = std::move(input.prims);
+    return bvh;
+}
+
+} // namespace mvcl::detail

@@ -1,0 +1,68 @@
+#pragma once
+// Private: per-ray constants of traversal and of the query's filters, computed once per query.
+// The triangle kernel's WatertightRay is made separately, once the ray enters the scene bounds.
+
+#include <mvcl/core/FloatBits.h>
+#include <mvcl/tracer/Ray.h>
+#include <mvcl/tracer/RayQuery.h>
+#include <mvcl/tracer/TriangleIntersection.h>
+
+#include <glm/vec3.hpp>
+
+#include <cmath>
+#include <limits>
+
+namespace mvcl::detail {
+
+inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
+/// Ize 2013: scaling the far slab distance by 1 + 2γ(3) removes every false miss of the box test.
+inline constexpr float kBoxFarScale = 1.f + 2.f * gamma(3);
+/// Traversal enters boxes up to this relative distance beyond the current closest hit (and
+/// before tMin). The watertight test's t and the slab test's t round differently; without the
+/// slack a triangle lying exactly on a box face could be culled although its t ties the best
+/// hit, and the BVH would then disagree with the brute-force oracle. False hits only cost time.
+inline constexpr float kTraversalSlackUp = 1.f + 1.f / 65536.f;
+inline constexpr float kTraversalSlackDown = 1.f - 1.f / 65536.f;
+
+/// True if the ray and the query are usable: finite origin and direction, non-zero direction,
+/// tMin ≤ tMax, neither NaN.
+inline bool isValidQuery(const Ray &ray, const RayQuery &query) {
+    for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(ray.origin[k]) || !std::isfinite(ray.direction[k])) return false;
+    if (ray.direction.x == 0.f && ray.direction.y == 0.f && ray.direction.z == 0.f) return false;
+    if (std::isnan(query.tMin) || std::isnan(query.tMax) || query.tMin > query.tMax) return false;
+    return query.tMax > 0.f;
+}
+
+struct RayContext {
+    Ray ray;
+    glm::vec3 invDir;
+    int nearIdx[3]; ///< index into BvhNode::bounds of the slab the ray enters through, per axis
+    int farIdx[3];
+    float tMin;     ///< query lower bound (hits need t ≥ tMin and t > 0)
+    float tMax;     ///< query upper bound
+    float tLow;     ///< box culling lower bound (with slack)
+    uint32_t layerMask;
+    const RayQuery *query;
+    bool hasClips;
+
+    RayContext(const Ray &r, const RayQuery &q)
+        : ray(r), tMin(q.tMin), tMax(q.tMax), layerMask(q.layerMask), query(&q),
+          hasClips(q.clipCount > 0) {
+        for (int k = 0; k < 3; ++k) {
+            // IEEE division keeps the sign of zero: 1/(−0) = −∞, so the slab order below is
+            // right for ±0 components too.
+            invDir[k] = 1.f / r.direction[k];
+            const bool negative = std::signbit(invDir[k]);
+            nearIdx[k] = negative ? k + 3 : k;
+            farIdx[k] = negative ? k : k + 3;
+        }
+        tLow = tMin > 0.f ? tMin * kTraversalSlackDown : 0.f;
+    }
+
+    /// The query's t-range test, applied to every candidate (never by the box test).
+    bool acceptsT(float t) const { return t > 0.f && t >= tMin && t <= tMax && t < kInfinity; }
+    bool acceptsPoint(float t) const { return !hasClips || query->acceptsPoint(ray.at(t)); }
+};
+
+} // namespace mvcl::detail

@@ -1,0 +1,92 @@
+#pragma once
+// Private: the watertight ray/triangle kernel shared by intersectTriangle() and the tracer, so
+// that the public test, the BVH and the brute-force oracle run literally the same arithmetic.
+
+#include <mvcl/core/FloatBits.h>
+#include <mvcl/tracer/TriangleIntersection.h>
+
+#include <glm/vec3.hpp>
+
+#include <cmath>
+
+namespace mvcl::detail {
+
+/// Extra relative slack on the early tMax rejection. The early test compares t·det (rounded)
+/// against tMax·det (rounded); the exact range check happens on the final t, so the early test
+/// must never reject a triangle whose final t would pass. 2^-20 is ~8 ulps, far above the ~3 ulps
+/// the product and the division can differ by.
+inline constexpr float kEarlyRejectSlack = 1.f + 1.f / 1048576.f;
+
+/// Woop–Benthin–Wald watertight test, pbrt-v4 variant (shapes.cpp IntersectTriangle). Returns the
+/// hit with t > 0 guaranteed (conservative t > δt) and t ≤ tMax (up to the slack above: callers
+/// re-check the range on the returned t). Zero-area triangles never hit (det == 0).
+/// max of non-negative finite values; std::fmax is a libm call because of its NaN rules.
+inline float max3(float a, float b, float c) {
+    const float m = a > b ? a : b;
+    return m > c ? m : c;
+}
+
+inline bool watertightIntersect(const WatertightRay &r, const glm::vec3 &p0, const glm::vec3 &p1,
+                                const glm::vec3 &p2, float tMax, TriangleHit &hit) {
+    // Translate to the ray origin, permute so the ray's dominant axis is z, shear so the ray
+    // becomes +z. Vertices are transformed independently of the triangle, so a vertex or edge
+    // shared by two triangles gets bit-identical transformed values in both.
+    const float p0z = p0[r.kz] - r.origin[r.kz];
+    const float p1z = p1[r.kz] - r.origin[r.kz];
+    const float p2z = p2[r.kz] - r.origin[r.kz];
+    const float p0x = (p0[r.kx] - r.origin[r.kx]) + r.sx * p0z;
+    const float p0y = (p0[r.ky] - r.origin[r.ky]) + r.sy * p0z;
+    const float p1x = (p1[r.kx] - r.origin[r.kx]) + r.sx * p1z;
+    const float p1y = (p1[r.ky] - r.origin[r.ky]) + r.sy * p1z;
+    const float p2x = (p2[r.kx] - r.origin[r.kx]) + r.sx * p2z;
+    const float p2y = (p2[r.ky] - r.origin[r.ky]) + r.sy * p2z;
+
+    // 2D edge functions. a·b − c·d without FMA contraction (-ffp-contract=off) is exactly
+    // antisymmetric, so an edge shared with opposite winding gets exactly the negated value.
+    float e0 = p1x * p2y - p1y * p2x;
+    float e1 = p2x * p0y - p2y * p0x;
+    float e2 = p0x * p1y - p0y * p1x;
+    if (e0 == 0.f || e1 == 0.f || e2 == 0.f) {
+        // The ray passes (within float precision) through an edge or vertex: decide the sign
+        // exactly. Products of floats are exact in double, so a zero here is a true zero.
+        e0 = float(double(p2y) * double(p1x) - double(p2x) * double(p1y));
+        e1 = float(double(p0y) * double(p2x) - double(p0x) * double(p2y));
+        e2 = float(double(p1y) * double(p0x) - double(p1x) * double(p0y));
+    }
+    if ((e0 < 0.f || e1 < 0.f || e2 < 0.f) && (e0 > 0.f || e1 > 0.f || e2 > 0.f)) return false;
+    const float det = e0 + e1 + e2;
+    if (det == 0.f) return false; // degenerate (zero projected area) or NaN-free miss
+
+    const float z0 = r.sz * p0z;
+    const float z1 = r.sz * p1z;
+    const float z2 = r.sz * p2z;
+    const float tScaled = e0 * z0 + e1 * z1 + e2 * z2;
+    if (det < 0.f && (tScaled >= 0.f || tScaled < tMax * kEarlyRejectSlack * det)) return false;
+    if (det > 0.f && (tScaled <= 0.f || tScaled > tMax * kEarlyRejectSlack * det)) return false;
+
+    const float invDet = 1.f / det;
+    const float t = tScaled * invDet;
+    if (!(t > 0.f)) return false;
+
+    // Conservative t > δt (pbrt-v4 §6.8.4): the hit is in front of the origin even counting
+    // every rounding error above.
+    const float maxZt = max3(std::fabs(z0), std::fabs(z1), std::fabs(z2));
+    const float deltaZ = gamma(3) * maxZt;
+    const float maxXt = max3(std::fabs(p0x), std::fabs(p1x), std::fabs(p2x));
+    const float maxYt = max3(std::fabs(p0y), std::fabs(p1y), std::fabs(p2y));
+    const float deltaX = gamma(5) * (maxXt + maxZt);
+    const float deltaY = gamma(5) * (maxYt + maxZt);
+    const float deltaE = 2.f * (gamma(2) * maxXt * maxYt + deltaY * maxXt + deltaX * maxYt);
+    const float maxE = max3(std::fabs(e0), std::fabs(e1), std::fabs(e2));
+    const float deltaT =
+        3.f * (gamma(3) * maxE * maxZt + deltaE * maxZt + deltaZ * maxE) * std::fabs(invDet);
+    if (t <= deltaT) return false;
+
+    hit.t = t;
+    hit.b0 = e0 * invDet;
+    hit.b1 = e1 * invDet;
+    hit.b2 = e2 * invDet;
+    return true;
+}
+
+} // namespace mvcl::detail

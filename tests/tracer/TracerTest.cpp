@@ -1,0 +1,522 @@
+#include <mvcl/tracer/Tracer.h>
+
+#include <mvcl/core/FloatBits.h>
+#include <mvcl/model/Scene.h>
+#include <mvcl/tracer/RayOffset.h>
+
+#include "TracerTestUtil.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+
+namespace mvcl {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+glm::vec3 randomUnit(std::mt19937 &rng) {
+    std::normal_distribution<float> n(0.f, 1.f);
+    for (;;) {
+        const glm::vec3 v(n(rng), n(rng), n(rng));
+        const float len = glm::length(v);
+        if (len > 1e-3f) return v / len;
+    }
+}
+
+/// Random triangles in [-1, 1]³ plus exact duplicates, axis-aligned and oblique coplanar sets,
+/// spheres and a floor plane, spread over four layers.
+Scene makeSoup(int triangles, uint32_t seed) {
+    Scene scene;
+    scene.materials.resize(1);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(-1.f, 1.f), small(-0.2f, 0.2f);
+    for (int layer = 0; layer < 4; ++layer) {
+        TriangleMesh mesh;
+        mesh.name = "soup" + std::to_string(layer);
+        mesh.layer = layer;
+        for (int i = 0; i < triangles / 4; ++i) {
+            const glm::vec3 c(pos(rng), pos(rng), pos(rng));
+            const uint32_t base = uint32_t(mesh.positions.size());
+            const int kind = i % 8;
+            if (kind == 0 && i > 0) {
+                // Exact duplicate of the previous triangle (same vertices, new indices).
+                const glm::uvec3 prev = mesh.indices.back();
+                mesh.positions.push_back(mesh.positions[prev.x]);
+                mesh.positions.push_back(mesh.positions[prev.y]);
+                mesh.positions.push_back(mesh.positions[prev.z]);
+            } else if (kind == 1) {
+                // Coplanar with z = 0.25 (axis-aligned: box faces coincide with the plane).
+                mesh.positions.push_back({c.x, c.y, 0.25f});
+                mesh.positions.push_back({c.x + small(rng), c.y + small(rng), 0.25f});
+                mesh.positions.push_back({c.x + small(rng), c.y + small(rng), 0.25f});
+            } else if (kind == 2) {
+                // Coplanar with the oblique plane x + y + z = 0.5.
+                for (int k = 0; k < 3; ++k) {
+                    const float x = c.x + small(rng), y = c.y + small(rng);
+                    mesh.positions.push_back({x, y, 0.5f - x - y});
+                }
+            } else {
+                for (int k = 0; k < 3; ++k)
+                    mesh.positions.push_back(c + glm::vec3(small(rng), small(rng), small(rng)));
+            }
+            mesh.indices.push_back({base, base + 1, base + 2});
+        }
+        scene.meshes.push_back(std::move(mesh));
+    }
+    // A few degenerate and non-finite triangles that must be left out.
+    TriangleMesh junk;
+    junk.name = "junk";
+    junk.positions = {glm::vec3(0.f), glm::vec3(0.5f), glm::vec3(1.f),
+                      glm::vec3(std::numeric_limits<float>::quiet_NaN()), glm::vec3(0.1f, 0.f, 0.f)};
+    junk.indices = {{0, 1, 2}, {0, 3, 4}, {0, 0, 4}};
+    scene.meshes.push_back(std::move(junk));
+    for (int i = 0; i < 8; ++i) {
+        Sphere s;
+        s.center = {pos(rng), pos(rng), pos(rng)};
+        s.radius = 0.05f + 0.1f * std::fabs(small(rng));
+        s.layer = i % 4;
+        scene.spheres.push_back(s);
+    }
+    Sphere dup = scene.spheres.front(); // exact duplicate sphere
+    scene.spheres.push_back(dup);
+    Plane floor;
+    floor.normal = {0.f, 1.f, 0.f};
+    floor.offset = -1.5f;
+    floor.layer = 2;
+    scene.planes.push_back(floor);
+    return scene;
+}
+
+Ray randomRay(std::mt19937 &rng, float extent = 1.5f) {
+    std::uniform_real_distribution<float> pos(-extent, extent);
+    return Ray{{pos(rng), pos(rng), pos(rng)}, randomUnit(rng)};
+}
+
+/// Bitwise equality of two hits (t compared as bits so −0/NaN subtleties cannot hide).
+void expectSameHit(bool foundA, const Hit &a, bool foundB, const Hit &b, const std::string &what) {
+    ASSERT_EQ(foundA, foundB) << what;
+    if (!foundA) return;
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.t), std::bit_cast<uint32_t>(b.t)) << what << " " << a.t << " vs " << b.t;
+    EXPECT_EQ(a.kind, b.kind) << what;
+    EXPECT_EQ(a.geometry, b.geometry) << what;
+    EXPECT_EQ(a.primitive, b.primitive) << what;
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.u), std::bit_cast<uint32_t>(b.u)) << what;
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.v), std::bit_cast<uint32_t>(b.v)) << what;
+    EXPECT_EQ(a.layer, b.layer) << what;
+}
+
+RayQuery randomQuery(std::mt19937 &rng) {
+    RayQuery q;
+    std::uniform_int_distribution<int> coin(0, 3);
+    std::uniform_real_distribution<float> uni(0.f, 1.f), pos(-1.f, 1.f);
+    if (coin(rng) == 0) q.layerMask = uint32_t(rng()) & 0xfu;
+    if (coin(rng) == 0) {
+        q.tMin = 2.f * uni(rng);
+        q.tMax = q.tMin + 2.f * uni(rng);
+    }
+    const int clips = coin(rng) == 0 ? 1 + coin(rng) % 3 : 0;
+    for (int i = 0; i < clips; ++i) {
+        ClipVolume &cv = q.clips[q.clipCount++];
+        cv.shape = ClipVolume::Shape(coin(rng) % 3);
+        cv.keep = coin(rng) % 2 ? ClipVolume::Keep::Inside : ClipVolume::Keep::Outside;
+        cv.a = {pos(rng), pos(rng), pos(rng)};
+        cv.b = cv.a + glm::vec3(uni(rng), uni(rng), uni(rng));
+        cv.radius = uni(rng);
+        if (cv.shape == ClipVolume::Shape::HalfSpace) cv.a = randomUnit(rng);
+    }
+    return q;
+}
+
+TEST(Tracer, BuildStatsLeaveOutDegenerateGeometry) {
+    const Scene scene = makeSoup(4000, 1);
+    const Tracer tracer(scene);
+    const TracerBuildStats &st = tracer.buildStats();
+    EXPECT_EQ(st.triangles, 4000u); // the three junk triangles are left out
+    EXPECT_EQ(st.spheres, 9u);
+    EXPECT_EQ(st.planes, 1u);
+    EXPECT_GT(st.nodes, 1u);
+    EXPECT_GT(st.leaves, 0u);
+    EXPECT_GT(st.maxDepth, 0);
+    EXPECT_GT(st.memoryBytes, 0u);
+    EXPECT_GE(st.buildMilliseconds, 0.0);
+}
+
+TEST(Tracer, BvhMatchesBruteForceOnSoup) {
+    const Scene scene = makeSoup(4000, 2);
+    const Tracer tracer(scene);
+    std::mt19937 rng(3);
+    int hits = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const Ray ray = randomRay(rng);
+        const RayQuery q = i % 2 ? randomQuery(rng) : RayQuery{};
+        Hit a, b;
+        const bool fa = tracer.closestHit(ray, q, a);
+        const bool fb = tracer.closestHitBruteForce(ray, q, b);
+        expectSameHit(fa, a, fb, b, "ray " + std::to_string(i));
+        EXPECT_EQ(tracer.anyHit(ray, q), fa) << "ray " << i;
+        hits += fa;
+        if (fa) {
+            EXPECT_TRUE(q.acceptsPoint(ray.at(a.t)));
+            EXPECT_TRUE((q.layerMask >> a.layer) & 1u);
+            EXPECT_GE(a.t, q.tMin);
+            EXPECT_LE(a.t, q.tMax);
+        }
+    }
+    EXPECT_GT(hits, 1000);
+}
+
+TEST(Tracer, BvhMatchesBruteForceOnCoplanarAxisAlignedRays) {
+    // Rays travelling inside the z = 0.25 plane and rays hitting it head-on exercise the box
+    // faces that coincide with triangle planes.
+    const Scene scene = makeSoup(2000, 4);
+    const Tracer tracer(scene);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> pos(-1.2f, 1.2f);
+    for (int i = 0; i < 3000; ++i) {
+        Ray ray;
+        if (i % 2) ray = Ray{{pos(rng), pos(rng), 1.5f}, {0.f, 0.f, -1.f}};
+        else {
+            const glm::vec3 d = randomUnit(rng);
+            ray = Ray{{pos(rng), pos(rng), 0.25f}, glm::normalize(glm::vec3(d.x, d.y, 0.f))};
+        }
+        Hit a, b;
+        const bool fa = tracer.closestHit(ray, {}, a);
+        const bool fb = tracer.closestHitBruteForce(ray, {}, b);
+        expectSameHit(fa, a, fb, b, "ray " + std::to_string(i));
+    }
+}
+
+TEST(Tracer, IdenticalForOneAndTwoBuildThreads) {
+    const Scene scene = makeSoup(40000, 6);
+    TracerSettings one, two;
+    one.buildThreads = 1;
+    two.buildThreads = 2;
+    const Tracer a(scene, one), b(scene, two);
+    EXPECT_EQ(a.buildStats().nodes, b.buildStats().nodes);
+    EXPECT_EQ(a.buildStats().maxDepth, b.buildStats().maxDepth);
+    std::mt19937 rng(7);
+    for (int i = 0; i < 3000; ++i) {
+        const Ray ray = randomRay(rng);
+        const RayQuery q = randomQuery(rng);
+        Hit ha, hb;
+        const bool fa = a.closestHit(ray, q, ha);
+        const bool fb = b.closestHit(ray, q, hb);
+        expectSameHit(fa, ha, fb, hb, "ray " + std::to_string(i));
+    }
+}
+
+TEST(Tracer, LayerMaskSkipsMaskedLayers) {
+    Scene scene;
+    TriangleMesh outer = test::makeUvSphere({0, 0, 0}, 2.0, 32, 32);
+    outer.layer = 0;
+    TriangleMesh inner = test::makeUvSphere({0, 0, 0}, 1.0, 32, 32);
+    inner.layer = 1;
+    scene.meshes = {outer, inner};
+    Sphere core;
+    core.radius = 0.5f;
+    core.layer = 2;
+    scene.spheres.push_back(core);
+    const Tracer tracer(scene);
+    std::mt19937 rng(8);
+    for (int i = 0; i < 2000; ++i) {
+        const glm::vec3 d = randomUnit(rng);
+        const Ray ray{-5.f * d + 0.1f * randomUnit(rng), d};
+        for (int layer = 0; layer < 3; ++layer) {
+            RayQuery q;
+            q.layerMask = layerBit(layer);
+            Hit h;
+            ASSERT_TRUE(tracer.closestHit(ray, q, h));
+            EXPECT_EQ(h.layer, layer);
+            EXPECT_TRUE(tracer.anyHit(ray, q));
+            q.layerMask = layersFrom(layer);
+            ASSERT_TRUE(tracer.closestHit(ray, q, h));
+            EXPECT_EQ(h.layer, layer);
+        }
+        RayQuery none;
+        none.layerMask = layerBit(5);
+        Hit h;
+        EXPECT_FALSE(tracer.closestHit(ray, none, h));
+        EXPECT_FALSE(tracer.anyHit(ray, none));
+        none.layerMask = 0;
+        EXPECT_FALSE(tracer.closestHit(ray, none, h));
+    }
+}
+
+TEST(Tracer, DistanceWindowHonoured) {
+    Scene scene;
+    scene.meshes.push_back(test::makeBoxMesh({-1, -1, -1}, {1, 1, 1}));
+    scene.meshes.push_back(test::makeBoxMesh({-3, -3, -3}, {3, 3, 3}));
+    const Tracer tracer(scene);
+    const Ray ray{{0.1f, 0.2f, 10.f}, {0.f, 0.f, -1.f}};
+    Hit h;
+    ASSERT_TRUE(tracer.closestHit(ray, {}, h));
+    EXPECT_FLOAT_EQ(h.t, 7.f);
+    RayQuery q;
+    q.tMin = 7.5f; // the layer lens's distance d
+    ASSERT_TRUE(tracer.closestHit(ray, q, h));
+    EXPECT_FLOAT_EQ(h.t, 9.f);
+    q.tMin = 9.5f;
+    ASSERT_TRUE(tracer.closestHit(ray, q, h));
+    EXPECT_FLOAT_EQ(h.t, 11.f);
+    q.tMin = 0.f;
+    q.tMax = 6.9f;
+    EXPECT_FALSE(tracer.closestHit(ray, q, h));
+    EXPECT_FALSE(tracer.anyHit(ray, q));
+    q.tMax = 7.f; // inclusive
+    EXPECT_TRUE(tracer.closestHit(ray, q, h));
+    q.tMin = 9.2f;
+    q.tMax = 10.8f;
+    EXPECT_FALSE(tracer.closestHit(ray, q, h));
+    EXPECT_FALSE(tracer.anyHit(ray, q));
+}
+
+TEST(Tracer, ClipVolumes) {
+    Scene scene;
+    scene.meshes.push_back(test::makeBoxMesh({-1, -1, -1}, {1, 1, 1}));
+    Sphere s;
+    s.radius = 0.5f;
+    s.layer = 1;
+    scene.spheres.push_back(s);
+    const Tracer tracer(scene);
+    const Ray ray{{0.f, 0.1f, 10.f}, {0.f, 0.f, -1.f}};
+    Hit h;
+
+    RayQuery cut; // box cutaway around the front face: the ray reaches the sphere
+    cut.clips[0] = {ClipVolume::Shape::Box, ClipVolume::Keep::Outside, {-2, -2, 0.9f}, {2, 2, 2}, 0};
+    cut.clipCount = 1;
+    ASSERT_TRUE(tracer.closestHit(ray, cut, h));
+    EXPECT_EQ(h.kind, GeometryKind::Sphere);
+    EXPECT_NEAR(h.t, 10.f - std::sqrt(0.25f - 0.01f), 1e-5f);
+
+    RayQuery keepIn; // keep only inside a sphere of radius 0.3: the sphere's front is outside
+    keepIn.clips[0] = {ClipVolume::Shape::Sphere, ClipVolume::Keep::Inside, {0, 0, 0}, {}, 0.3f};
+    keepIn.clipCount = 1;
+    EXPECT_FALSE(tracer.closestHit(ray, keepIn, h));
+    keepIn.clips[0].radius = 1.5f; // now everything but the far half of the box
+    ASSERT_TRUE(tracer.closestHit(ray, keepIn, h));
+    EXPECT_FLOAT_EQ(h.t, 9.f);
+
+    RayQuery half; // keep z ≤ 0 only: {p : dot((0,0,-1), p) ≥ 0}, as a keep-inside half-space
+    half.clips[0] = {ClipVolume::Shape::HalfSpace, ClipVolume::Keep::Inside, {0, 0, -1}, {}, 0.f};
+    half.clipCount = 1;
+    ASSERT_TRUE(tracer.closestHit(ray, half, h));
+    EXPECT_EQ(h.kind, GeometryKind::Sphere); // far root of the sphere
+    EXPECT_NEAR(h.t, 10.f + std::sqrt(0.25f - 0.01f), 1e-5f);
+    EXPECT_TRUE(tracer.anyHit(ray, half));
+    Hit b;
+    ASSERT_TRUE(tracer.closestHitBruteForce(ray, half, b));
+    EXPECT_EQ(std::bit_cast<uint32_t>(h.t), std::bit_cast<uint32_t>(b.t));
+
+    RayQuery all = half; // intersection of constraints: also cut z < −0.6 → nothing but the sphere
+    all.clips[1] = {ClipVolume::Shape::HalfSpace, ClipVolume::Keep::Outside, {0, 0, -1}, {}, 0.6f};
+    all.clipCount = 2;
+    ASSERT_TRUE(tracer.closestHit(ray, all, h));
+    EXPECT_EQ(h.kind, GeometryKind::Sphere);
+}
+
+TEST(Tracer, InvalidRaysMiss) {
+    const Scene scene = makeSoup(400, 9);
+    const Tracer tracer(scene);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const Ray good{{0.f, 0.f, 5.f}, {0.f, 0.f, -1.f}};
+    Hit h;
+    ASSERT_TRUE(tracer.closestHit(good, {}, h));
+    std::vector<Ray> bad = {
+        {{nan, 0.f, 5.f}, {0.f, 0.f, -1.f}}, {{0.f, 0.f, 5.f}, {0.f, nan, -1.f}},
+        {{kInf, 0.f, 5.f}, {0.f, 0.f, -1.f}}, {{0.f, 0.f, 5.f}, {0.f, 0.f, -kInf}},
+        {{0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}},   {{0.f, 0.f, 5.f}, {-0.f, 0.f, -0.f}},
+    };
+    for (const Ray &r : bad) {
+        Hit untouched;
+        untouched.t = 42.f;
+        EXPECT_FALSE(tracer.closestHit(r, {}, untouched));
+        EXPECT_EQ(untouched.t, 42.f);
+        EXPECT_FALSE(tracer.anyHit(r, {}));
+        EXPECT_FALSE(tracer.closestHitBruteForce(r, {}, untouched));
+    }
+    RayQuery q;
+    q.tMin = 2.f;
+    q.tMax = 1.f;
+    EXPECT_FALSE(tracer.closestHit(good, q, h));
+    EXPECT_FALSE(tracer.anyHit(good, q));
+    q.tMin = nan;
+    q.tMax = kInf;
+    EXPECT_FALSE(tracer.closestHit(good, q, h));
+    q.tMin = 0.f;
+    q.tMax = nan;
+    EXPECT_FALSE(tracer.closestHit(good, q, h));
+}
+
+TEST(Tracer, AxisParallelRaysWithSignedZerosOnSlabPlanes) {
+    Scene scene;
+    scene.meshes.push_back(test::makeBoxMesh({0, 0, 0}, {1, 1, 1}));
+    scene.meshes.push_back(test::makeBoxMesh({2, 0, 0}, {3, 1, 1}));
+    const Tracer tracer(scene);
+    for (float zero : {0.f, -0.f}) {
+        // Origins exactly on the x = 0 and x = 1 slab planes, travelling along z.
+        for (float x : {0.f, 1.f, 0.5f}) {
+            for (float y : {0.f, 0.5f, 1.f}) {
+                const Ray ray{{x, y, -1.f}, {zero, zero, 1.f}};
+                Hit h, b;
+                const bool f = tracer.closestHit(ray, {}, h);
+                const bool fb = tracer.closestHitBruteForce(ray, {}, b);
+                ASSERT_TRUE(f) << x << " " << y << " zero sign " << std::signbit(zero);
+                EXPECT_EQ(h.t, 1.f);
+                expectSameHit(f, h, fb, b, "axis ray");
+                EXPECT_TRUE(tracer.anyHit(ray, {}));
+            }
+        }
+        // Along x inside the face plane y = 0 (origin on two slab planes at once).
+        const Ray along{{-1.f, 0.f, 0.f}, {1.f, zero, zero}};
+        Hit h, b;
+        const bool f = tracer.closestHit(along, {}, h);
+        const bool fb = tracer.closestHitBruteForce(along, {}, b);
+        ASSERT_TRUE(f);
+        EXPECT_EQ(h.t, 1.f);
+        expectSameHit(f, h, fb, b, "along");
+        // Missing to the side: parallel to a slab, outside it.
+        const Ray miss{{1.5f, 0.5f, -1.f}, {zero, zero, 1.f}};
+        EXPECT_FALSE(tracer.closestHit(miss, {}, h));
+        EXPECT_FALSE(tracer.anyHit(miss, {}));
+    }
+}
+
+TEST(Tracer, WatertightThroughTheBvh) {
+    // The BVH must not leak where the triangle test does not: rays from inside a far-away
+    // tessellated sphere aimed at its vertices all hit.
+    for (const glm::dvec3 center : {glm::dvec3(0.0), glm::dvec3(148376.0, 1234.0, -223423.0)}) {
+        Scene scene;
+        scene.meshes.push_back(test::makeUvSphere(center, 2.0, 200, 200));
+        const Tracer tracer(scene);
+        const TriangleMesh &mesh = scene.meshes[0];
+        std::mt19937 rng(10);
+        std::uniform_int_distribution<std::size_t> pick(0, mesh.positions.size() - 1);
+        std::uniform_real_distribution<double> inside(-0.5, 0.5);
+        int leaks = 0;
+        for (int i = 0; i < 20000; ++i) {
+            const glm::vec3 o(center + glm::dvec3(inside(rng), inside(rng), inside(rng)));
+            const Ray ray{o, mesh.positions[pick(rng)] - o};
+            if (!tracer.anyHit(ray, {})) ++leaks;
+            Hit h;
+            if (!tracer.closestHit(ray, {}, h)) ++leaks;
+        }
+        EXPECT_EQ(leaks, 0);
+    }
+}
+
+TEST(Tracer, InteractionGeometry) {
+    Scene scene;
+    TriangleMesh tri;
+    tri.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    tri.normals = {{0, 0, -1}, {0, 0, -1}, {0, 0, -1}}; // flipped: must come back on Ng's side
+    tri.indices = {{0, 1, 2}};
+    tri.material = 0;
+    tri.layer = 3;
+    scene.meshes.push_back(tri);
+    Sphere s;
+    s.center = {5, 0, 0};
+    s.radius = 1;
+    s.material = 0;
+    s.layer = 1;
+    scene.spheres.push_back(s);
+    Plane p;
+    p.normal = {0, 1, 0};
+    p.offset = -2;
+    p.layer = 2;
+    scene.planes.push_back(p);
+    scene.materials.resize(1);
+    const Tracer tracer(scene);
+
+    Hit h;
+    Ray r{{0.25f, 0.25f, 1.f}, {0, 0, -1}};
+    ASSERT_TRUE(tracer.closestHit(r, {}, h));
+    SurfaceInteraction si = tracer.interaction(r, h);
+    EXPECT_NEAR(si.position.x, 0.25f, 1e-6f);
+    EXPECT_NEAR(si.position.y, 0.25f, 1e-6f);
+    EXPECT_EQ(si.geometricNormal, glm::vec3(0, 0, 1));
+    EXPECT_EQ(si.shadingNormal, glm::vec3(0, 0, 1));
+    EXPECT_EQ(si.layer, 3);
+
+    r = Ray{{5.f, 0.f, 5.f}, {0, 0, -1}};
+    ASSERT_TRUE(tracer.closestHit(r, {}, h));
+    EXPECT_EQ(h.kind, GeometryKind::Sphere);
+    si = tracer.interaction(r, h);
+    EXPECT_NEAR(glm::length(si.position - s.center), 1.f, 1e-6f);
+    EXPECT_NEAR(si.geometricNormal.z, 1.f, 1e-6f);
+    EXPECT_EQ(si.layer, 1);
+
+    r = Ray{{7.f, 5.f, 3.f}, glm::normalize(glm::vec3(0.3f, -1.f, 0.2f))};
+    ASSERT_TRUE(tracer.closestHit(r, {}, h));
+    EXPECT_EQ(h.kind, GeometryKind::Plane);
+    si = tracer.interaction(r, h);
+    EXPECT_NEAR(si.position.y, -2.f, 1e-6f);
+    EXPECT_EQ(si.geometricNormal, glm::vec3(0, 1, 0));
+    EXPECT_EQ(si.layer, 2);
+}
+
+/// pbrt-v4 Triangle.Reintersect: rays spawned from a hit point with offsetRayOrigin never hit
+/// the surface they leave, at every scale from 1e-6 to 1e6.
+TEST(Tracer, SpawnedRaysDoNotReintersect) {
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<float> uni(0.f, 1.f), expo(-6.f, 6.f);
+    int spawned = 0, reHits = 0;
+    for (int s = 0; s < 500; ++s) {
+        const float scale = std::pow(10.f, expo(rng));
+        const glm::vec3 shift = scale * glm::vec3(uni(rng), uni(rng), uni(rng)) * 4.f;
+        Scene scene;
+        if (s % 5 == 4) {
+            Sphere sp;
+            sp.center = shift;
+            sp.radius = scale * (0.1f + uni(rng));
+            scene.spheres.push_back(sp);
+        } else {
+            TriangleMesh mesh;
+            for (int k = 0; k < 3; ++k)
+                mesh.positions.push_back(shift + scale * glm::vec3(uni(rng), uni(rng), uni(rng)));
+            mesh.indices = {{0, 1, 2}};
+            scene.meshes.push_back(mesh);
+        }
+        const Tracer tracer(scene);
+        const glm::vec3 target =
+            s % 5 == 4 ? scene.spheres[0].center
+                       : (scene.meshes[0].positions[0] + scene.meshes[0].positions[1] +
+                          scene.meshes[0].positions[2]) / 3.f;
+        for (int i = 0; i < 20; ++i) {
+            const glm::vec3 o = target + 4.f * scale * randomUnit(rng);
+            const Ray ray{o, target - o};
+            Hit h;
+            if (!tracer.closestHit(ray, {}, h)) continue;
+            const SurfaceInteraction si = tracer.interaction(ray, h);
+            for (int j = 0; j < 10; ++j) {
+                glm::vec3 w = randomUnit(rng);
+                // Leave on the side we came from (reflection-like) or the other (refraction-like).
+                const glm::vec3 po = offsetRayOrigin(si.position, si.positionError,
+                                                     si.geometricNormal, w);
+                const Ray spawn{po, w};
+                Hit again;
+                ++spawned;
+                if (s % 5 == 4) {
+                    // A ray into a sphere hits its far side; only a hit right at the origin is
+                    // a re-intersection.
+                    if (tracer.closestHit(spawn, {}, again) &&
+                        again.t < 1e-3f * scene.spheres[0].radius)
+                        ++reHits;
+                } else if (tracer.closestHit(spawn, {}, again)) {
+                    ++reHits;
+                }
+            }
+        }
+    }
+    EXPECT_GT(spawned, 10000);
+    EXPECT_EQ(reHits, 0);
+}
+
+} // namespace
+} // namespace mvcl

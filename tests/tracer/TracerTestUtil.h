@@ -1,0 +1,64 @@
+#pragma once
+// Procedural geometry shared by the tracer tests.
+
+#include <mvcl/model/TriangleMesh.h>
+
+#include <glm/vec3.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+namespace mvcl::test {
+
+/// Closed UV sphere: `rings` latitude bands × `segments` longitudes, one vertex per pole.
+/// Positions are computed in double around the origin and then offset by `center` in double, so a
+/// far-away sphere gets the (quantised) float positions a loader would produce.
+inline TriangleMesh makeUvSphere(const glm::dvec3 &center, double radius, int rings, int segments) {
+    TriangleMesh mesh;
+    mesh.name = "uv-sphere";
+    auto add = [&](const glm::dvec3 &p) {
+        mesh.positions.push_back(glm::vec3(center + p));
+        mesh.normals.push_back(glm::vec3(p / radius));
+        return uint32_t(mesh.positions.size() - 1);
+    };
+    const uint32_t north = add({0.0, 0.0, radius});
+    std::vector<uint32_t> ring;
+    for (int i = 1; i < rings; ++i) {
+        const double theta = std::numbers::pi * double(i) / double(rings);
+        for (int j = 0; j < segments; ++j) {
+            const double phi = 2.0 * std::numbers::pi * double(j) / double(segments);
+            ring.push_back(add({radius * std::sin(theta) * std::cos(phi),
+                                radius * std::sin(theta) * std::sin(phi), radius * std::cos(theta)}));
+        }
+    }
+    const uint32_t south = add({0.0, 0.0, -radius});
+    auto at = [&](int i, int j) { return ring[std::size_t(i) * segments + (j % segments)]; };
+    for (int j = 0; j < segments; ++j) mesh.indices.push_back({north, at(0, j), at(0, j + 1)});
+    for (int i = 0; i + 1 < rings - 1; ++i)
+        for (int j = 0; j < segments; ++j) {
+            mesh.indices.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            mesh.indices.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    for (int j = 0; j < segments; ++j)
+        mesh.indices.push_back({at(rings - 2, j), south, at(rings - 2, j + 1)});
+    return mesh;
+}
+
+/// Axis-aligned box [lo, hi] as 12 outward-wound triangles.
+inline TriangleMesh makeBoxMesh(const glm::vec3 &lo, const glm::vec3 &hi) {
+    TriangleMesh mesh;
+    mesh.name = "box";
+    for (int i = 0; i < 8; ++i)
+        mesh.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+    const uint32_t f[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                              {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto &q : f) {
+        mesh.indices.push_back({q[0], q[1], q[2]});
+        mesh.indices.push_back({q[0], q[2], q[3]});
+    }
+    return mesh;
+}
+
+} // namespace mvcl::test
