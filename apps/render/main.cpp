@@ -91,7 +91,13 @@ Camera chooseCamera(const Scene &scene, const RenderCommandLine &cl) {
 
 int run(const RenderCommandLine &cl) {
     SceneLoadOptions loadOptions;
-    if (!cl.layerRules.empty()) loadOptions.layerRules = LayerRules::fromString(cl.layerRules);
+    if (!cl.layerRules.empty()) {
+        try {
+            loadOptions.layerRules = LayerRules::fromString(cl.layerRules);
+        } catch (const Error &e) { // a malformed option value is a usage error, not a bad file
+            throw Error("command line", "--layer-rule: " + e.problem());
+        }
+    }
     if (!cl.layerRulesFile.empty()) {
         const LayerRules fileRules = LayerRules::fromJsonFile(cl.layerRulesFile);
         for (const LayerRule &rule : fileRules.rules()) loadOptions.layerRules.add(rule);

@@ -108,6 +108,31 @@ TEST(RenderCli, DefaultSceneRendersAndReportsThroughput) {
     EXPECT_GT(imageVariance(mvcl::readImage(out)), 1e-4);
 }
 
+TEST(RenderCli, FileCamerasAreSelectableByIndex) {
+    const std::string duck = quoted(dataPath("models/Duck/Duck.glb"));
+    const fs::path out = outDir() / "duck-camera.png";
+    const CommandResult ok = runRender(duck + " --camera 0 --size 64x48 --spp 1 -o " + out.string());
+    EXPECT_EQ(ok.exitCode, 0) << ok.output;
+    const CommandResult bad = runRender(duck + " --camera 3 --size 64x48 -o " + out.string());
+    EXPECT_EQ(bad.exitCode, 2) << bad.output;
+    EXPECT_NE(bad.output.find("1 cameras"), std::string::npos) << bad.output;
+}
+
+TEST(RenderCli, LayerRulesOverrideInference) {
+    const std::string kidney = quoted(dataPath("models/HRA_Kidney_Female_Left/VH_F_Kidney_L.glb"));
+    const CommandResult r = runRender(kidney + " --info --layer-rule '*pyramid*=5;*capsule*=0'");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("VH_F_renal_pyramid_L_a"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("layer 5 (rule)"), std::string::npos) << r.output;
+    const CommandResult bad = runRender(kidney + " --info --layer-rule '*pyramid*'");
+    EXPECT_EQ(bad.exitCode, 2) << bad.output;
+    const fs::path rules = outDir() / "bad-rules.json";
+    std::ofstream(rules) << "{\"rules\": [{\"match\": \"*\", \"layer\": 99}]}";
+    const CommandResult badFile = runRender(kidney + " --info --layer-rules " + rules.string());
+    EXPECT_EQ(badFile.exitCode, 1) << badFile.output;
+    EXPECT_NE(badFile.output.find("bad-rules.json"), std::string::npos) << badFile.output;
+}
+
 TEST(RenderCli, UnwritableOutputExitsThree) {
     const CommandResult r = runRender("builtin:onion --size 8x8 -o /proc/forbidden/x.png");
     EXPECT_EQ(r.exitCode, 3) << r.output;

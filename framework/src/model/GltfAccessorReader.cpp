@@ -40,21 +40,6 @@ float readComponent(const unsigned char *p, int componentType, bool normalized) 
     }
 }
 
-std::uint32_t readIndex(const unsigned char *p, int componentType) {
-    switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        std::uint16_t v;
-        std::memcpy(&v, p, 2);
-        return v;
-    }
-    default: {
-        std::uint32_t v;
-        std::memcpy(&v, p, 4);
-        return v;
-    }
-    }
-}
 
 int indexSize(int componentType) {
     return componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
@@ -77,7 +62,7 @@ std::vector<glm::vec3> GltfAccessorReader::readVec3(int accessor) const {
         for (std::size_t i = 0; i < out.size(); ++i) out[i] = decode(l.data + i * l.stride);
     for (std::uint64_t k = 0; k < l.sparseCount; ++k) {
         const std::uint32_t target =
-            readIndex(l.sparseIndices + k * std::uint64_t(indexSize(l.sparseIndexType)), l.sparseIndexType);
+            readUnsignedInteger(l.sparseIndices + k * std::uint64_t(indexSize(l.sparseIndexType)), l.sparseIndexType);
         out[target] = decode(l.sparseValues + k * l.elemSize); // target < count: validated
     }
     return out;
@@ -87,11 +72,11 @@ std::vector<std::uint32_t> GltfAccessorReader::readIndices(int accessor) const {
     const AccessorLayout &l = m_validator.layout(accessor);
     std::vector<std::uint32_t> out(std::size_t(l.count), 0u);
     if (l.data)
-        for (std::size_t i = 0; i < out.size(); ++i) out[i] = readIndex(l.data + i * l.stride, l.componentType);
+        for (std::size_t i = 0; i < out.size(); ++i) out[i] = readUnsignedInteger(l.data + i * l.stride, l.componentType);
     for (std::uint64_t k = 0; k < l.sparseCount; ++k) {
         const std::uint32_t target =
-            readIndex(l.sparseIndices + k * std::uint64_t(indexSize(l.sparseIndexType)), l.sparseIndexType);
-        out[target] = readIndex(l.sparseValues + k * l.elemSize, l.componentType);
+            readUnsignedInteger(l.sparseIndices + k * std::uint64_t(indexSize(l.sparseIndexType)), l.sparseIndexType);
+        out[target] = readUnsignedInteger(l.sparseValues + k * l.elemSize, l.componentType);
     }
     return out;
 }

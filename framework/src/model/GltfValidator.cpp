@@ -36,7 +36,10 @@ const std::set<std::string> &supportedRequiredExtensions() {
     return kSupported;
 }
 
-std::uint64_t readUnsigned(const unsigned char *p, int componentType) {
+
+} // namespace
+
+std::uint32_t readUnsignedInteger(const unsigned char *p, int componentType) {
     switch (componentType) {
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
@@ -51,8 +54,6 @@ std::uint64_t readUnsigned(const unsigned char *p, int componentType) {
     }
     }
 }
-
-} // namespace
 
 GltfValidator::GltfValidator(GltfContext &context) : m_context(context), m_model(context.model()) {}
 
@@ -251,7 +252,7 @@ void GltfValidator::validateSparse(int index, AccessorLayout &layout) {
     // The spec requires strictly increasing indices; that also makes every index distinct.
     std::uint64_t previous = 0;
     for (std::uint64_t k = 0; k < layout.sparseCount; ++k) {
-        const std::uint64_t target = readUnsigned(layout.sparseIndices + k * std::uint64_t(indexSize),
+        const std::uint64_t target = readUnsignedInteger(layout.sparseIndices + k * std::uint64_t(indexSize),
                                                   layout.sparseIndexType);
         if (target >= acc.count)
             m_context.fail(name + ": sparse index " + std::to_string(target) + " is not below count " +

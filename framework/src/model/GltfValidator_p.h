@@ -65,4 +65,8 @@ private:
     std::vector<int> m_rootNodes;
 };
 
+/// Reads one unsigned 8-, 16- or 32-bit integer (glTF index component types) from unaligned
+/// memory; the caller has checked the bounds.
+std::uint32_t readUnsignedInteger(const unsigned char *p, int componentType);
+
 } // namespace mvcl::gltf
