@@ -28,13 +28,25 @@ Camera Camera::fromDesc(const CameraDesc &desc) {
 Camera Camera::framing(const Bounds3f &bounds, float verticalFovDegrees, float aspect) {
     if (bounds.isEmpty()) return lookAt({0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, verticalFovDegrees);
     const glm::vec3 center = bounds.center();
-    const float radius = std::max(0.5f * glm::length(bounds.extent()), 1e-30f);
-    // Fit the bounding sphere into the narrower of the two fields of view.
-    const float halfV = glm::radians(verticalFovDegrees) * 0.5f;
-    const float halfH = std::atan(std::tan(halfV) * aspect);
-    const float distance = radius / std::sin(std::min(halfV, halfH)) * 1.05f;
-    const glm::vec3 viewDir = glm::normalize(glm::vec3(0.55f, 0.45f, 1.f));
-    return lookAt(center + distance * viewDir, center, {0.f, 1.f, 0.f}, verticalFovDegrees);
+    const glm::vec3 toEye = glm::normalize(glm::vec3(0.55f, 0.45f, 1.f));
+    // Orient first at unit distance, then back off until every box corner is inside both the
+    // vertical and the horizontal field of view (tighter than the bounding sphere for long models).
+    const Camera oriented = lookAt(center + toEye, center, {0.f, 1.f, 0.f}, verticalFovDegrees);
+    const glm::mat3 &axes = oriented.worldFromCamera(); // right, up, backward
+    const float tanV = oriented.m_tanHalfFov;
+    const float tanH = tanV * aspect;
+    float distance = 0.f;
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner((i & 1) ? bounds.max.x : bounds.min.x, (i & 2) ? bounds.max.y : bounds.min.y,
+                               (i & 4) ? bounds.max.z : bounds.min.z);
+        const glm::vec3 c = corner - center;
+        const float x = std::abs(glm::dot(c, axes[0]));
+        const float y = std::abs(glm::dot(c, axes[1]));
+        const float towardEye = glm::dot(c, axes[2]);
+        distance = std::max({distance, towardEye + x / tanH, towardEye + y / tanV});
+    }
+    distance = std::max(distance * 1.08f, 1e-30f);
+    return lookAt(center + distance * toEye, center, {0.f, 1.f, 0.f}, verticalFovDegrees);
 }
 
 void Camera::update() {
