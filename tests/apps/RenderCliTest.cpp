@@ -97,6 +97,17 @@ TEST(RenderCli, InfoPrintsLayersWithoutRendering) {
     EXPECT_EQ(r.output.find("wrote"), std::string::npos);
 }
 
+TEST(RenderCli, EmptySceneLoadsAndRendersBackground) {
+    const std::string empty = quoted(dataPath("models/EdgeCases/assimp/TestNoRootNode/SceneWithoutNodes.gltf"));
+    const CommandResult info = runRender(empty + " --info");
+    EXPECT_EQ(info.exitCode, 0) << info.output;
+    EXPECT_NE(info.output.find("triangles  0"), std::string::npos) << info.output;
+    const fs::path out = outDir() / "empty.png";
+    const CommandResult render = runRender(empty + " --size 16x16 -o " + out.string());
+    EXPECT_EQ(render.exitCode, 0) << render.output;
+    EXPECT_TRUE(fs::exists(out));
+}
+
 TEST(RenderCli, DefaultSceneRendersAndReportsThroughput) {
     const fs::path out = outDir() / "default.png";
     fs::remove(out);
