@@ -1,8 +1,11 @@
 // mvcl-bench: our tracer side by side with Embree 3 on the same mesh, the same rays and the same
-// thread count, in one run. Measures BVH build, primary rays (closestHit vs rtcIntersect1) and
-// shadow rays toward a point light (anyHit vs rtcOccluded1), and checks that the hits agree.
+// thread count, in one run. Measures BVH build, primary rays (closestHit vs rtcIntersect1),
+// shadow rays toward a point light (anyHit vs rtcOccluded1) and incoherent diffuse-bounce rays
+// (random hemisphere directions from the primary hits; closestHit vs rtcIntersect1), and checks
+// that the hits agree.
 //
 //   mvcl-bench [model.glb | builtin:<name>] [--size WxH] [--threads N] [--repeat R]
+//              [--embree-config OPTIONS]   (extra rtcNewDevice options, e.g. tri_accel=bvh4.triangle4)
 
 #include <mvcl/model/BuiltinScenes.h>
 #include <mvcl/model/GltfLoader.h>
@@ -25,6 +28,7 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <random>
 #include <stdexcept>
 #include <exception>
 #include <string>
@@ -76,6 +80,7 @@ struct Options {
     int height = 1024;
     int threads = 0;
     int repeat = 3;
+    std::string embreeConfig; ///< extra rtcNewDevice options, e.g. "tri_accel=bvh4.triangle4"
 };
 
 Options parseOptions(int argc, char **argv) {
@@ -95,9 +100,11 @@ Options parseOptions(int argc, char **argv) {
             o.threads = std::stoi(value());
         } else if (a == "--repeat") {
             o.repeat = std::max(1, std::stoi(value()));
+        } else if (a == "--embree-config") {
+            o.embreeConfig = value();
         } else if (a == "--help" || a == "-h") {
             std::puts("usage: mvcl-bench [model.glb | builtin:<name>] [--size WxH] [--threads N] "
-                      "[--repeat R]");
+                      "[--repeat R] [--embree-config OPTIONS]");
             std::exit(0);
         } else if (!a.empty() && a[0] == '-') {
             throw std::runtime_error("unknown option " + a);
@@ -191,6 +198,22 @@ RTCScene buildEmbree(RTCDevice device, const mvcl::Scene &scene) {
     rtcCommitScene(es);
     return es;
 }
+
+/// rtcIntersect1 over [0, ∞), the query closestHit answers with a default RayQuery.
+void intersectEmbree(RTCScene scene, const mvcl::Ray &r, RTCRayHit &rh) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
+    rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y, rh.ray.dir_z = r.direction.z;
+    rh.ray.tnear = 0.f;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.mask = ~0u;
+    rh.ray.flags = 0;
+    rh.ray.time = 0.f;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &ctx, &rh);
+}
 #endif
 
 void printRow(const char *what, double ours, double embree, const char *unit, bool higherIsBetter) {
@@ -228,7 +251,8 @@ int main(int argc, char **argv) {
 
         double embreeBuild = 0.0;
 #ifdef MVCL_HAVE_EMBREE
-        const std::string config = "threads=" + std::to_string(opt.threads);
+        std::string config = "threads=" + std::to_string(opt.threads);
+        if (!opt.embreeConfig.empty()) config += "," + opt.embreeConfig;
         RTCDevice device = rtcNewDevice(config.c_str());
         rtcSetDeviceMemoryMonitorFunction(device, embreeMemoryMonitor, nullptr);
         RTCScene escene = nullptr;
@@ -271,6 +295,27 @@ int main(int argc, char **argv) {
             shadow.push_back({o, light - o}); // t in (0, 1) reaches the light
         }
         const int ns = int(shadow.size());
+
+        // Diffuse bounce rays: a uniform random direction in the hemisphere of the geometric
+        // normal facing the camera, from the same offset origins (seeded per ray: reproducible).
+        std::vector<mvcl::Ray> bounce;
+        bounce.reserve(n);
+        for (int i = 0; i < n; ++i) {
+            if (!found[i]) continue;
+            const mvcl::SurfaceInteraction si = tracer->interaction(primary.rays[i], hits[i]);
+            glm::vec3 normal = si.geometricNormal;
+            if (glm::dot(normal, primary.rays[i].direction) > 0.f) normal = -normal;
+            std::mt19937 rng{uint32_t(i)};
+            std::normal_distribution<float> gauss(0.f, 1.f);
+            glm::vec3 dir;
+            do {
+                dir = glm::vec3(gauss(rng), gauss(rng), gauss(rng));
+            } while (glm::length(dir) < 1e-3f);
+            dir = glm::normalize(dir);
+            if (glm::dot(dir, normal) < 0.f) dir = -dir;
+            bounce.push_back({mvcl::offsetRayOrigin(si.position, si.positionError, normal, dir), dir});
+        }
+        const int nb = int(bounce.size());
         mvcl::RayQuery shadowQuery;
         shadowQuery.tMax = 1.f - 1e-4f;
         std::vector<char> occluded(ns);
@@ -279,27 +324,20 @@ int main(int argc, char **argv) {
                         [&](int i) { occluded[i] = tracer->anyHit(shadow[i], shadowQuery); });
         });
 
-        double embreePrimary = 0.0, embreeShadow = 0.0;
+        std::vector<mvcl::Hit> bounceHits(nb);
+        std::vector<char> bounceFound(nb);
+        const double oursBounce = bestSeconds(opt.repeat, [&] {
+            parallelFor(nb, opt.threads, [&](int i) {
+                bounceFound[i] = tracer->closestHit(bounce[i], primaryQuery, bounceHits[i]);
+            });
+        });
+
+        double embreePrimary = 0.0, embreeShadow = 0.0, embreeBounce = 0.0;
 #ifdef MVCL_HAVE_EMBREE
         std::vector<RTCRayHit> eh(n);
         embreePrimary = bestSeconds(opt.repeat, [&] {
-            parallelFor(n, opt.threads, [&](int i) {
-                RTCIntersectContext ctx;
-                rtcInitIntersectContext(&ctx);
-                RTCRayHit &rh = eh[i];
-                const mvcl::Ray &r = primary.rays[i];
-                rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
-                rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y,
-                rh.ray.dir_z = r.direction.z;
-                rh.ray.tnear = 0.f;
-                rh.ray.tfar = std::numeric_limits<float>::infinity();
-                rh.ray.mask = ~0u;
-                rh.ray.flags = 0;
-                rh.ray.time = 0.f;
-                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-                rtcIntersect1(escene, &ctx, &rh);
-            });
+            parallelFor(n, opt.threads,
+                        [&](int i) { intersectEmbree(escene, primary.rays[i], eh[i]); });
         });
         std::vector<char> eOccluded(ns);
         embreeShadow = bestSeconds(opt.repeat, [&] {
@@ -319,19 +357,27 @@ int main(int argc, char **argv) {
                 eOccluded[i] = ray.tfar < 0.f; // Embree sets tfar = −inf when occluded
             });
         });
+        std::vector<RTCRayHit> ebh(nb);
+        embreeBounce = bestSeconds(opt.repeat, [&] {
+            parallelFor(nb, opt.threads, [&](int i) { intersectEmbree(escene, bounce[i], ebh[i]); });
+        });
 #endif
         std::printf("\n");
         printRow("primary (closestHit)", mrays(n, oursPrimary), embreePrimary > 0 ? mrays(n, embreePrimary) : 0.0,
                  "Mrays/s", true);
         printRow("shadow (anyHit)", mrays(ns, oursShadow), embreeShadow > 0 ? mrays(ns, embreeShadow) : 0.0,
                  "Mrays/s", true);
+        printRow("diffuse (closestHit)", mrays(nb, oursBounce),
+                 embreeBounce > 0 ? mrays(nb, embreeBounce) : 0.0, "Mrays/s", true);
         std::printf("%-22s ours %10.2f MB", "memory", double(st.memoryBytes) / (1 << 20));
 #ifdef MVCL_HAVE_EMBREE
         std::printf("   embree %10.2f MB (scene allocations)", double(embreeBytes) / (1 << 20));
 #endif
-        std::printf("\nprimary hits: %d of %d rays; shadow rays: %d, occluded: %ld\n",
+        std::printf("\nprimary hits: %d of %d rays; shadow rays: %d, occluded: %ld; diffuse rays: "
+                    "%d, hits: %ld\n",
                     int(std::count(found.begin(), found.end(), 1)), n, ns,
-                    long(std::count(occluded.begin(), occluded.end(), 1)));
+                    long(std::count(occluded.begin(), occluded.end(), 1)), nb,
+                    long(std::count(bounceFound.begin(), bounceFound.end(), 1)));
 
 #ifdef MVCL_HAVE_EMBREE
         // Agreement: same hit/miss, same mesh and triangle, t within a relative 1e-4.
@@ -348,10 +394,14 @@ int main(int argc, char **argv) {
         }
         int sameOcclusion = 0;
         for (int i = 0; i < ns; ++i) sameOcclusion += eOccluded[i] == occluded[i];
+        int sameBounce = 0;
+        for (int i = 0; i < nb; ++i)
+            sameBounce += (ebh[i].hit.geomID != RTC_INVALID_GEOMETRY_ID) == bool(bounceFound[i]);
         std::printf("agreement with embree: hit/miss %.4f%%, same mesh+triangle %.4f%% of common "
-                    "hits, |dt| <= 1e-4 t %.4f%%, shadow %.4f%%\n",
+                    "hits, |dt| <= 1e-4 t %.4f%%, shadow %.4f%%, diffuse hit/miss %.4f%%\n",
                     100.0 * sameHitMiss / n, bothHit ? 100.0 * samePrim / bothHit : 100.0,
-                    bothHit ? 100.0 * closeT / bothHit : 100.0, ns ? 100.0 * sameOcclusion / ns : 100.0);
+                    bothHit ? 100.0 * closeT / bothHit : 100.0, ns ? 100.0 * sameOcclusion / ns : 100.0,
+                    nb ? 100.0 * sameBounce / nb : 100.0);
         rtcReleaseScene(escene);
         rtcReleaseDevice(device);
 #endif

@@ -172,6 +172,30 @@ TEST(Tracer, BvhMatchesBruteForceOnSoup) {
     EXPECT_GT(hits, 1000);
 }
 
+/// Leaves of one primitive and leaves of up to 15 (four PrimBlocks, partly filled, with spheres
+/// among the triangles) give the brute-force answer too.
+TEST(Tracer, BvhMatchesBruteForceForAnyLeafSize) {
+    const Scene scene = makeSoup(3000, 12);
+    for (const int leafSize : {1, 15}) {
+        TracerSettings settings;
+        settings.maxLeafSize = leafSize;
+        const Tracer tracer(scene, settings);
+        std::mt19937 rng(13);
+        int hits = 0;
+        for (int i = 0; i < 2000; ++i) {
+            const Ray ray = randomRay(rng);
+            const RayQuery q = i % 2 ? randomQuery(rng) : RayQuery{};
+            Hit a, b;
+            const bool fa = tracer.closestHit(ray, q, a);
+            const bool fb = tracer.closestHitBruteForce(ray, q, b);
+            expectSameHit(fa, a, fb, b, "leaf size " + std::to_string(leafSize) + " ray " + std::to_string(i));
+            EXPECT_EQ(tracer.anyHit(ray, q), fa) << "leaf size " << leafSize << " ray " << i;
+            hits += fa;
+        }
+        EXPECT_GT(hits, 500);
+    }
+}
+
 TEST(Tracer, BvhMatchesBruteForceOnCoplanarAxisAlignedRays) {
     // Rays travelling inside the z = 0.25 plane and rays hitting it head-on exercise the box
     // faces that coincide with triangle planes.
@@ -195,20 +219,27 @@ TEST(Tracer, BvhMatchesBruteForceOnCoplanarAxisAlignedRays) {
 
 TEST(Tracer, IdenticalForOneAndTwoBuildThreads) {
     const Scene scene = makeSoup(40000, 6);
-    TracerSettings one, two;
+    TracerSettings one;
     one.buildThreads = 1;
-    two.buildThreads = 2;
-    const Tracer a(scene, one), b(scene, two);
-    EXPECT_EQ(a.buildStats().nodes, b.buildStats().nodes);
-    EXPECT_EQ(a.buildStats().maxDepth, b.buildStats().maxDepth);
-    std::mt19937 rng(7);
-    for (int i = 0; i < 3000; ++i) {
-        const Ray ray = randomRay(rng);
-        const RayQuery q = randomQuery(rng);
-        Hit ha, hb;
-        const bool fa = a.closestHit(ray, q, ha);
-        const bool fb = b.closestHit(ray, q, hb);
-        expectSameHit(fa, ha, fb, hb, "ray " + std::to_string(i));
+    const Tracer a(scene, one);
+    // Two threads, and more threads than the machine has (other task interleavings).
+    for (const int threads : {2, 5}) {
+        TracerSettings many;
+        many.buildThreads = threads;
+        const Tracer b(scene, many);
+        EXPECT_EQ(a.buildStats().nodes, b.buildStats().nodes);
+        EXPECT_EQ(a.buildStats().leaves, b.buildStats().leaves);
+        EXPECT_EQ(a.buildStats().maxDepth, b.buildStats().maxDepth);
+        EXPECT_EQ(a.buildStats().memoryBytes, b.buildStats().memoryBytes);
+        std::mt19937 rng(7);
+        for (int i = 0; i < 3000; ++i) {
+            const Ray ray = randomRay(rng);
+            const RayQuery q = randomQuery(rng);
+            Hit ha, hb;
+            const bool fa = a.closestHit(ray, q, ha);
+            const bool fb = b.closestHit(ray, q, hb);
+            expectSameHit(fa, ha, fb, hb, std::to_string(threads) + " threads, ray " + std::to_string(i));
+        }
     }
 }
 

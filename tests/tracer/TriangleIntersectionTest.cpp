@@ -2,11 +2,15 @@
 
 #include "TracerTestUtil.h"
 
+// The 4-wide kernel is private to the tracer; it is tested here against the scalar kernel.
+#include "../../framework/src/tracer/WatertightTriangle4.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
 
 #include <array>
+#include <bit>
 #include <cfloat>
 #include <string>
 #include <cmath>
@@ -174,6 +178,71 @@ INSTANTIATE_TEST_SUITE_P(
         return std::string(info.param.center.x == 0.0 ? "AtOrigin" : "FarAway") +
                (info.param.edgeMidpoints ? "EdgeMidpoints" : "Vertices");
     });
+
+/// The 4-wide kernel must give bit-identical results to the scalar kernel on every lane: random
+/// triangles, rays through shared vertices and edge midpoints (zero edge functions: the double
+/// fallback), axis-aligned rays, degenerate triangles, far-away coordinates and finite tMax.
+TEST(TriangleIntersection, FourWideKernelMatchesScalarBitwise) {
+    std::mt19937 rng(99);
+    std::uniform_real_distribution<float> uni(-1.f, 1.f);
+    std::uniform_int_distribution<int> pick(0, 7);
+    const std::array<glm::vec3, 3> offsets = {glm::vec3(0.f), glm::vec3(148376.f, 1234.f, -223423.f),
+                                              glm::vec3(1e-3f, -2e-3f, 5e-4f)};
+    const glm::vec3 axes[3] = {{1.f, 0.f, 0.f}, {0.f, -1.f, 0.f}, {0.f, 0.f, 1.f}};
+    int hits = 0, edgeHits = 0;
+    for (int iter = 0; iter < 40000; ++iter) {
+        const glm::vec3 off = offsets[std::size_t(iter) % offsets.size()];
+        detail::PrimBlock block{};
+        std::array<std::array<glm::vec3, 3>, 4> tris;
+        for (int lane = 0; lane < 4; ++lane) {
+            for (int k = 0; k < 3; ++k) tris[lane][k] = off + glm::vec3(uni(rng), uni(rng), uni(rng));
+            const int kind = pick(rng);
+            if (kind == 0) tris[lane][2] = tris[lane][1];                        // degenerate
+            if (kind == 1 && lane > 0) tris[lane][0] = tris[lane - 1][1];        // shared vertex
+            if (kind == 2 && lane > 0) {                                         // shared edge,
+                tris[lane][0] = tris[lane - 1][1];                               // opposite winding
+                tris[lane][1] = tris[lane - 1][0];
+            }
+            for (int k = 0; k < 3; ++k) block.setVertex(lane, k, tris[lane][k]);
+        }
+        const glm::vec3 origin = off + glm::vec3(uni(rng), uni(rng), uni(rng)) * 2.f;
+        glm::vec3 target;
+        switch (pick(rng) % 4) {
+        case 0: target = tris[std::size_t(pick(rng) % 4)][std::size_t(pick(rng) % 3)]; break;
+        case 1: {
+            const auto &t = tris[std::size_t(pick(rng) % 4)];
+            target = 0.5f * (t[0] + t[1]);
+            break;
+        }
+        default: target = off + glm::vec3(uni(rng), uni(rng), uni(rng)) * 0.5f; break;
+        }
+        Ray ray{origin, target - origin};
+        if (iter % 16 == 0) ray.direction = axes[std::size_t(iter / 16) % 3];
+        if (ray.direction == glm::vec3(0.f)) continue;
+        const float tMax = iter % 3 == 0 ? 0.5f + uni(rng) : std::numeric_limits<float>::infinity();
+        const WatertightRay wray(ray);
+        const detail::WatertightRay4 wray4(wray);
+        detail::TriangleHit4 h4;
+        const int lanes = 1 + iter % 15;
+        const int bits = detail::watertightIntersect4(wray4, block, lanes, tMax, h4);
+        for (int lane = 0; lane < 4; ++lane) {
+            TriangleHit h;
+            const bool scalar = (lanes >> lane) & 1 &&
+                                detail::watertightIntersect(wray, tris[lane][0], tris[lane][1],
+                                                            tris[lane][2], tMax, h);
+            ASSERT_EQ(bool((bits >> lane) & 1), scalar) << "iteration " << iter << " lane " << lane;
+            if (!scalar) continue;
+            ++hits;
+            edgeHits += h.b0 == 0.f || h.b1 == 0.f || h.b2 == 0.f;
+            EXPECT_EQ(std::bit_cast<uint32_t>(h4.t[lane]), std::bit_cast<uint32_t>(h.t));
+            EXPECT_EQ(std::bit_cast<uint32_t>(h4.b0[lane]), std::bit_cast<uint32_t>(h.b0));
+            EXPECT_EQ(std::bit_cast<uint32_t>(h4.b1[lane]), std::bit_cast<uint32_t>(h.b1));
+            EXPECT_EQ(std::bit_cast<uint32_t>(h4.b2[lane]), std::bit_cast<uint32_t>(h.b2));
+        }
+    }
+    EXPECT_GT(hits, 1000);
+    EXPECT_GT(edgeHits, 10); // the double fallback was exercised
+}
 
 } // namespace
 } // namespace mvcl

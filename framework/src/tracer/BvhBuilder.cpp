@@ -43,6 +43,9 @@ constexpr int kBins = 32;
 constexpr int kMaxSahDepth = 64;
 /// Below this many primitives a subtree is built on the calling thread (task overhead).
 constexpr uint32_t kMinParallelPrims = 4096;
+/// Nodes with at least this many primitives are binned on two threads (when building with more
+/// than one): otherwise the root and its children are binned by one thread while others wait.
+constexpr uint32_t kMinParallelBinning = 65536;
 /// SAH cost of a node visit relative to one block (four primitives) of a leaf.
 constexpr double kTraversalCost = 1.0;
 /// Leaves are intersected four primitives at a time (PrimBlock): a leaf of 1..4 costs the same.
@@ -79,6 +82,13 @@ struct Box4 {
     void growPoint(__m128 p) { grow(p, p); }
     glm::vec3 min() const { return toVec3(lo); }
     glm::vec3 max() const { return toVec3(hi); }
+    /// halfArea(min(), max()) with the extents taken in float (exact for all but huge boxes;
+    /// the SAH only compares costs, and the same inputs always give the same result).
+    double halfArea() const {
+        alignas(16) float d[4];
+        _mm_store_ps(d, _mm_sub_ps(hi, lo));
+        return double(d[0]) * d[1] + double(d[1]) * d[2] + double(d[2]) * d[0];
+    }
     static glm::vec3 toVec3(__m128 v) {
         alignas(16) float f[4];
         _mm_store_ps(f, v);
@@ -95,6 +105,10 @@ struct Box4 {
     void growPoint(const glm::vec3 &p) { grow(p, p); }
     glm::vec3 min() const { return lo; }
     glm::vec3 max() const { return hi; }
+    double halfArea() const {
+        const glm::vec3 d = hi - lo;
+        return double(d[0]) * d[1] + double(d[1]) * d[2] + double(d[2]) * d[0];
+    }
 #endif
 };
 
@@ -139,11 +153,6 @@ RangeBounds boundsOf(const BuildPrim *prims, uint32_t begin, uint32_t end) {
     return r;
 }
 
-struct Bin {
-    Box4 box;
-    uint32_t count = 0;
-};
-
 /// Maps centroids to bins on all three axes with the same float arithmetic as binOf() below
 /// ((c − cmin) · scale, truncated, clamped), so binning and partitioning always agree.
 struct Binner {
@@ -151,8 +160,10 @@ struct Binner {
     glm::vec3 scale;
     int nBins;
 
-    int binOf(const PrimLanes &p, int axis) const {
-        const int b = int((p.centroid(axis) - cmin[axis]) * scale[axis]);
+    int binOf(const BuildPrim &p, int axis) const {
+        // The centroid lane of PrimLanes, computed with the same operations.
+        const float c = p.lo[axis] * 0.5f + p.hi[axis] * 0.5f;
+        const int b = int((c - cmin[axis]) * scale[axis]);
         return b < nBins - 1 ? b : nBins - 1; // ≥ 0 by construction (c ≥ cmin, scale ≥ 0)
     }
     void binsOf(const PrimLanes &p, int out[4]) const {
@@ -165,8 +176,36 @@ struct Binner {
         const __m128i clamped = _mm_or_si128(_mm_and_si128(over, last), _mm_andnot_si128(over, b));
         _mm_storeu_si128(reinterpret_cast<__m128i *>(out), clamped);
 #else
-        for (int axis = 0; axis < 3; ++axis) out[axis] = binOf(p, axis);
+        for (int axis = 0; axis < 3; ++axis) {
+            const int b = int((p.c[axis] - cmin[axis]) * scale[axis]);
+            out[axis] = b < nBins - 1 ? b : nBins - 1;
+        }
 #endif
+    }
+};
+
+/// Per-axis bins of a primitive range: bounds and counts.
+struct BinSet {
+    Box4 boxes[3][kBins];
+    uint32_t counts[3][kBins] = {};
+
+    void add(const Binner &binner, const BuildPrim *prims, uint32_t begin, uint32_t end) {
+        for (uint32_t i = begin; i < end; ++i) {
+            const PrimLanes p(prims[i]);
+            alignas(16) int b[4];
+            binner.binsOf(p, b);
+            for (int axis = 0; axis < 3; ++axis) {
+                boxes[axis][b[axis]].grow(p.lo, p.hi);
+                ++counts[axis][b[axis]];
+            }
+        }
+    }
+    void merge(const BinSet &other, int nBins) {
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < nBins; ++b) {
+                boxes[axis][b].grow(other.boxes[axis][b]);
+                counts[axis][b] += other.counts[axis][b];
+            }
     }
 };
 
@@ -251,34 +290,40 @@ private:
     void findSplit(const Binner &binner, uint32_t begin, uint32_t end, int &bestAxis,
                    int &bestSplit, double &bestCost) const {
         const int nBins = binner.nBins;
-        Bin bins[3][kBins];
-        for (uint32_t i = begin; i < end; ++i) {
-            const PrimLanes p(m_prims[i]);
-            alignas(16) int b[4];
-            binner.binsOf(p, b);
-            for (int axis = 0; axis < 3; ++axis) {
-                bins[axis][b[axis]].box.grow(p.lo, p.hi);
-                ++bins[axis][b[axis]].count;
-            }
+        BinSet all;
+        if (m_spawnDepth > 0 && end - begin >= kMinParallelBinning) {
+            // The top nodes would otherwise bin alone: bin the halves on two threads. Merging
+            // bins (min/max and integer counts) is exact, so the result is the same.
+            const uint32_t mid = begin + (end - begin) / 2;
+            BinSet upper;
+            auto task = std::async(std::launch::async, [&] { upper.add(binner, m_prims, mid, end); });
+            all.add(binner, m_prims, begin, mid);
+            task.get();
+            all.merge(upper, nBins);
+        } else {
+            all.add(binner, m_prims, begin, end);
         }
+        const auto &bins = all.boxes;
+        const auto &counts = all.counts;
         for (int axis = 0; axis < 3; ++axis) {
             if (binner.scale[axis] == 0.f) continue;
-            const Bin *axisBins = bins[axis];
+            const Box4 *axisBins = bins[axis];
+            const uint32_t *axisCounts = counts[axis];
             double rightCost[kBins];
-            Bin acc;
+            Box4 acc;
+            uint32_t count = 0;
             for (int b = nBins - 1; b > 0; --b) {
-                acc.box.grow(axisBins[b].box);
-                acc.count += axisBins[b].count;
-                rightCost[b] = acc.count ? halfArea(acc.box.min(), acc.box.max()) * blocksOf(acc.count)
-                                         : -1.0;
+                acc.grow(axisBins[b]);
+                count += axisCounts[b];
+                rightCost[b] = count ? acc.halfArea() * blocksOf(count) : -1.0;
             }
-            acc = Bin{};
+            acc = Box4{};
+            count = 0;
             for (int b = 0; b < nBins - 1; ++b) {
-                acc.box.grow(axisBins[b].box);
-                acc.count += axisBins[b].count;
-                if (acc.count == 0 || rightCost[b + 1] < 0.0) continue;
-                const double cost =
-                    halfArea(acc.box.min(), acc.box.max()) * blocksOf(acc.count) + rightCost[b + 1];
+                acc.grow(axisBins[b]);
+                count += axisCounts[b];
+                if (count == 0 || rightCost[b + 1] < 0.0) continue;
+                const double cost = acc.halfArea() * blocksOf(count) + rightCost[b + 1];
                 if (cost < bestCost) bestCost = cost, bestAxis = axis, bestSplit = b;
             }
         }
@@ -290,16 +335,12 @@ private:
                        RangeBounds &left, RangeBounds &right) {
         uint32_t i = begin, j = end;
         for (;;) {
-            while (i < j) {
-                const PrimLanes p(m_prims[i]);
-                if (binner.binOf(p, axis) > split) break;
-                left.grow(p);
+            while (i < j && binner.binOf(m_prims[i], axis) <= split) {
+                left.grow(PrimLanes(m_prims[i]));
                 ++i;
             }
-            while (i < j) {
-                const PrimLanes p(m_prims[j - 1]);
-                if (binner.binOf(p, axis) <= split) break;
-                right.grow(p);
+            while (i < j && binner.binOf(m_prims[j - 1], axis) > split) {
+                right.grow(PrimLanes(m_prims[j - 1]));
                 --j;
             }
             if (i == j) return i;

@@ -25,7 +25,6 @@
 
 namespace mvcl {
 
-using detail::BvhNode;
 using detail::PrimKind;
 using detail::PrimRecord;
 using detail::RayContext;
