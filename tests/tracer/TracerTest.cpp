@@ -5,6 +5,7 @@
 #include <mvcl/tracer/RayOffset.h>
 
 #include "TracerTestUtil.h"
+#include "../../framework/src/tracer/TraversalIsa.h"
 
 #include <gtest/gtest.h>
 
@@ -240,6 +241,28 @@ TEST(Tracer, IdenticalForOneAndTwoBuildThreads) {
             const bool fb = b.closestHit(ray, q, hb);
             expectSameHit(fa, ha, fb, hb, std::to_string(threads) + " threads, ray " + std::to_string(i));
         }
+    }
+}
+
+// The AVX2 and SSE node tests must visit the same nodes and return bit-identical results.
+TEST(Tracer, Avx2AndSseTraversalAgreeBitwise) {
+    if (!detail::avx2TraversalAvailable()) GTEST_SKIP() << "no AVX2 traversal on this CPU/build";
+    const Scene scene = makeSoup(20000, 9);
+    detail::forceSseTraversal(true);
+    const Tracer sse(scene);
+    detail::forceSseTraversal(false);
+    const Tracer avx2(scene);
+    std::mt19937 rng(11);
+    for (int i = 0; i < 5000; ++i) {
+        const Ray ray = randomRay(rng);
+        const RayQuery q = randomQuery(rng);
+        Hit ha, hb;
+        const bool fa = sse.closestHit(ray, q, ha);
+        const bool fb = avx2.closestHit(ray, q, hb);
+        expectSameHit(fa, ha, fb, hb, "ray " + std::to_string(i));
+        EXPECT_EQ(sse.anyHit(ray, q), avx2.anyHit(ray, q)) << "ray " << i;
+        Hit bf;
+        EXPECT_EQ(fa, sse.closestHitBruteForce(ray, q, bf)) << "ray " << i;
     }
 }
 

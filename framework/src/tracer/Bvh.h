@@ -6,11 +6,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 namespace mvcl::detail {
 
-/// 32 bytes. A node of the binary build tree (traversal walks the 4-wide Bvh4Node collapsed
+/// 32 bytes. A node of the binary build tree (traversal walks the 8-wide WideNode collapsed
 /// from it).
 struct alignas(32) BvhNode {
     float bounds[6];    ///< min x, y, z, max x, y, z
@@ -44,6 +45,23 @@ struct PrimRecord {
 };
 static_assert(sizeof(PrimRecord) == 48);
 
+static_assert(std::is_trivially_default_constructible_v<PrimRecord>);
+
+/// The build input records. Not a std::vector: they are written by parallel chunks right after
+/// allocation, and value-initialising hundreds of thousands first would be a serial pass.
+struct PrimArray {
+    std::unique_ptr<PrimRecord[]> data;
+    std::size_t count = 0;
+
+    void allocate(std::size_t n) {
+        data = std::make_unique_for_overwrite<PrimRecord[]>(n);
+        count = n;
+    }
+    std::size_t size() const { return count; }
+    PrimRecord &operator[](std::size_t i) { return data[i]; }
+    const PrimRecord &operator[](std::size_t i) const { return data[i]; }
+};
+
 struct AlignedFree {
     void operator()(void *p) const;
 };
@@ -54,19 +72,19 @@ void *allocateAligned(std::size_t bytes);
 
 /// The binary SAH tree. Node 0 is the root; the children of an interior node are the adjacent
 /// pair (offset, offset + 1). Pairs are allocated as tasks reach them, so slot positions (unlike
-/// the tree itself) may differ between builds with different thread counts; the 4-wide collapse
+/// the tree itself) may differ between builds with different thread counts; the wide collapse
 /// walks the tree depth first and lays out its output independently of them.
 struct Bvh {
     std::unique_ptr<BvhNode[], AlignedFree> nodes;
     std::size_t nodeCount = 0; ///< slots in use (all of [0, nodeCount) are valid nodes)
     std::size_t leafCount = 0;
     int maxDepth = 0;
-    std::vector<PrimRecord> prims; ///< the build input, in input order
+    PrimArray prims;             ///< the build input, in input order
     std::vector<uint32_t> order;   ///< leaf order: a leaf's primitives are prims[order[offset + i]]
 };
 
 struct BvhBuildInput {
-    std::vector<PrimRecord> prims; ///< any order; only valid (finite, non-degenerate) ones
+    PrimArray prims; ///< any order; only valid (finite, non-degenerate) ones
     int maxLeafSize = 4;
     int threads = 1;
 };

@@ -3,9 +3,10 @@
 // its parent (the partition pass computes them for both children), so a node reads its
 // primitives twice: once to bin, once to partition. The tree depends only on the input, never
 // on the thread count; only the slots of child pairs (taken from an atomic counter) do, and
-// the 4-wide collapse lays out its output independently of them.
+// the wide collapse lays out its output independently of them.
 
 #include "Bvh.h"
+#include "ParallelFor.h"
 
 #include <glm/common.hpp>
 
@@ -390,27 +391,42 @@ Bvh buildBvh(BvhBuildInput input) {
     if (n >= (std::size_t(1) << (BvhNode::kCountShift - 1)))
         throw Error("tracer", "too many primitives for the BVH (" + std::to_string(n) + ")");
 
-    std::vector<BuildPrim> build(n);
-    RangeBounds rootBounds;
-    for (std::size_t i = 0; i < n; ++i) {
-        const PrimRecord &r = input.prims[i];
-        BuildPrim &b = build[i];
-        if (r.kind == uint8_t(PrimKind::Sphere)) {
-            const glm::vec3 rad(r.p1.x);
-            b.lo = r.p0 - rad;
-            b.hi = r.p0 + rad;
-            // Round outward: c ± r is rounded to nearest and could cut the sphere by an ulp.
-            for (int k = 0; k < 3; ++k) {
-                b.lo[k] = nextFloatDown(b.lo[k]);
-                b.hi[k] = nextFloatUp(b.hi[k]);
+    // Boxes in parallel chunks; the root bounds are merged from per-chunk bounds (min/max is
+    // exact in any order).
+    // Not value-initialised: the chunks below write every record.
+    const std::unique_ptr<BuildPrim[]> build = std::make_unique_for_overwrite<BuildPrim[]>(n);
+    constexpr std::size_t kChunk = 16384;
+    const std::size_t chunks = (n + kChunk - 1) / kChunk;
+    std::vector<RangeBounds> chunkBounds(chunks);
+    parallelFor(chunks, input.threads, [&](std::size_t c) {
+        const std::size_t end = std::min(n, (c + 1) * kChunk);
+        RangeBounds bounds; // local: neighbouring chunks' bounds share cache lines
+        for (std::size_t i = c * kChunk; i < end; ++i) {
+            const PrimRecord &r = input.prims[i];
+            BuildPrim &b = build[i];
+            if (r.kind == uint8_t(PrimKind::Sphere)) {
+                const glm::vec3 rad(r.p1.x);
+                b.lo = r.p0 - rad;
+                b.hi = r.p0 + rad;
+                // Round outward: c ± r is rounded to nearest and could cut the sphere by an ulp.
+                for (int k = 0; k < 3; ++k) {
+                    b.lo[k] = nextFloatDown(b.lo[k]);
+                    b.hi[k] = nextFloatUp(b.hi[k]);
+                }
+            } else {
+                b.lo = glm::min(r.p0, glm::min(r.p1, r.p2));
+                b.hi = glm::max(r.p0, glm::max(r.p1, r.p2));
             }
-        } else {
-            b.lo = glm::min(r.p0, glm::min(r.p1, r.p2));
-            b.hi = glm::max(r.p0, glm::max(r.p1, r.p2));
+            b.id = uint32_t(i);
+            b.layerBit = 1u << r.layer;
+            bounds.grow(PrimLanes(b));
         }
-        b.id = uint32_t(i);
-        b.layerBit = 1u << r.layer;
-        rootBounds.grow(PrimLanes(b));
+        chunkBounds[c] = bounds;
+    });
+    RangeBounds rootBounds;
+    for (const RangeBounds &cb : chunkBounds) {
+        rootBounds.box.grow(cb.box);
+        rootBounds.cbox.grow(cb.cbox);
     }
 
     const int maxLeaf = std::clamp(input.maxLeafSize, 1, int(BvhNode::kMaxLeafCount));
@@ -423,7 +439,7 @@ Bvh buildBvh(BvhBuildInput input) {
 
     // At most n leaves, so at most 2n − 1 nodes; pages past the ones used are never touched.
     bvh.nodes = allocateNodes(2 * n);
-    Builder builder(build.data(), bvh.nodes.get(), maxLeaf, spawnDepth);
+    Builder builder(build.get(), bvh.nodes.get(), maxLeaf, spawnDepth);
     builder.build(0, 0, uint32_t(n), 0, rootBounds);
 
     bvh.nodeCount = builder.slotsUsed();

@@ -1,9 +1,11 @@
 #include <mvcl/tracer/Tracer.h>
 
 #include "AnalyticShapes.h"
+#include "ParallelFor.h"
 #include "Bvh.h"
-#include "Bvh4.h"
+#include "WideBvh.h"
 #include "RayContext.h"
+#include "TraversalIsa.h"
 #include "WatertightTriangle.h"
 #include "WatertightTriangle4.h"
 
@@ -14,6 +16,7 @@
 #include <glm/vec3.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -21,6 +24,14 @@
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
+// The AVX2 traversal is compiled for its own functions only (#pragma GCC target below), never
+// with a global -march flag, and chosen at run time.
+#if defined(__GNUC__) && !defined(__clang__) && (defined(__x86_64__) || defined(__i386__))
+#define MVCL_HAVE_AVX2_TRAVERSAL 1
+#include <immintrin.h>
+#else
+#define MVCL_HAVE_AVX2_TRAVERSAL 0
 #endif
 
 namespace mvcl {
@@ -32,9 +43,9 @@ using detail::RayContext;
 namespace {
 
 /// Traversal stack entries. The binary build bounds the depth (SAH up to 64 levels, then
-/// object-median splits of at most 28 more); a 4-wide node pushes at most 3 entries and spans at
-/// least one binary level, so 3 · 92 < 320 cannot overflow.
-constexpr int kStackSize = 320;
+/// object-median splits of at most 28 more); a wide node pushes at most kWidth − 1 entries and
+/// spans at least one binary level, so 7 · 92 < 660 cannot overflow.
+constexpr int kStackSize = 660;
 
 struct PlaneRecord {
     glm::vec3 normal;
@@ -152,9 +163,9 @@ inline int triangleLanes(const detail::PrimBlock &block, uint32_t layerMask) {
 template <bool AnyHit>
 inline bool testLeaf(uint32_t leaf, const detail::PrimBlock *blocks, const detail::PrimInfo *info,
                      const RayContext &c, const detail::WatertightRay4 &wray, Hit &best) {
-    using detail::Bvh4Leaf;
-    const uint32_t first = Bvh4Leaf::firstBlock(leaf);
-    const uint32_t last = first + Bvh4Leaf::blockCount(leaf);
+    using detail::WideLeaf;
+    const uint32_t first = WideLeaf::firstBlock(leaf);
+    const uint32_t last = first + WideLeaf::blockCount(leaf);
     bool found = false;
     for (uint32_t b = first; b < last; ++b) {
         const detail::PrimBlock &block = blocks[b];
@@ -178,7 +189,7 @@ inline bool testLeaf(uint32_t leaf, const detail::PrimBlock *blocks, const detai
                            best);
         }
     }
-    if (Bvh4Leaf::hasSpheres(leaf)) {
+    if (WideLeaf::hasSpheres(leaf)) {
         for (uint32_t b = first; b < last; ++b)
             for (int lane = 0; lane < 4; ++lane) {
                 const detail::PrimInfo &pi = info[4 * b + lane];
@@ -193,19 +204,59 @@ inline bool testLeaf(uint32_t leaf, const detail::PrimBlock *blocks, const detai
     return found;
 }
 
+#define MVCL_TRAVERSAL_NS sse
+#define MVCL_TRAVERSAL_AVX2 0
+#include "WideTraversal.inl"
+#undef MVCL_TRAVERSAL_NS
+#undef MVCL_TRAVERSAL_AVX2
+
+#if MVCL_HAVE_AVX2_TRAVERSAL
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#define MVCL_TRAVERSAL_NS avx2
+#define MVCL_TRAVERSAL_AVX2 1
+#include "WideTraversal.inl"
+#undef MVCL_TRAVERSAL_NS
+#undef MVCL_TRAVERSAL_AVX2
+#pragma GCC pop_options
+#endif
+
+/// Set by tests (TraversalIsa.h) to force the baseline path.
+std::atomic<bool> g_forceSseTraversal{false};
+
+bool useAvx2Traversal() { return !g_forceSseTraversal.load() && detail::avx2TraversalAvailable(); }
+
 } // namespace
+
+namespace detail {
+
+void forceSseTraversal(bool force) { g_forceSseTraversal.store(force); }
+bool avx2TraversalAvailable() {
+#if MVCL_HAVE_AVX2_TRAVERSAL
+    return __builtin_cpu_supports("avx2");
+#else
+    return false;
+#endif
+}
+} // namespace detail
 
 struct Tracer::Private {
     const Scene &scene;
     TracerSettings settings;
-    detail::Bvh4 bvh4; ///< what traversal walks (the binary tree is dropped after the collapse)
+    detail::WideBvh wide; ///< what traversal walks (the binary tree is dropped after the collapse)
+    bool useAvx2 = useAvx2Traversal(); ///< which compiled variant of traverse() runs
     std::vector<PlaneRecord> planes;
     TracerBuildStats stats;
 
     Private(const Scene &s, const TracerSettings &st) : scene(s), settings(st) {}
 
     template <bool AnyHit>
-    bool traverse(const RayContext &c, Hit &best) const;
+    bool traverse(const RayContext &c, Hit &best) const {
+#if MVCL_HAVE_AVX2_TRAVERSAL
+        if (useAvx2) return avx2::traverse<AnyHit>(wide, c, best);
+#endif
+        return sse::traverse<AnyHit>(wide, c, best);
+    }
     template <bool AnyHit>
     bool testPlanes(const RayContext &c, Hit &best) const;
 };
@@ -232,152 +283,34 @@ bool Tracer::Private::testPlanes(const RayContext &c, Hit &best) const {
     return found;
 }
 
-/// The per-ray constants of intersectBox4(), broadcast once per query.
-struct NodeRay4 {
-    const RayContext &c;
-#if defined(__SSE2__)
-    __m128 ox, oy, oz, ix, iy, iz, tLow;
-
-    explicit NodeRay4(const RayContext &ctx)
-        : c(ctx), ox(_mm_set1_ps(ctx.ray.origin.x)), oy(_mm_set1_ps(ctx.ray.origin.y)),
-          oz(_mm_set1_ps(ctx.ray.origin.z)), ix(_mm_set1_ps(ctx.invDir.x)),
-          iy(_mm_set1_ps(ctx.invDir.y)), iz(_mm_set1_ps(ctx.invDir.z)),
-          tLow(_mm_set1_ps(ctx.tLow)) {}
-#else
-    explicit NodeRay4(const RayContext &ctx) : c(ctx) {}
-#endif
-};
-
-/// Slab test of the four children of a 4-wide node at once (the same arithmetic as intersectBox,
-/// lane by lane). Returns the bit mask of the lanes entered and their entry distances.
-inline int intersectBox4(const detail::Bvh4Node &n, const NodeRay4 &r, float tHigh,
-                         float tNear4[4]) {
-    const RayContext &c = r.c;
-#if defined(__SSE2__)
-    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.nearIdx[0]]), r.ox), r.ix);
-    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.nearIdx[1]]), r.oy), r.iy);
-    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.nearIdx[2]]), r.oz), r.iz);
-    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.farIdx[0]]), r.ox), r.ix);
-    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.farIdx[1]]), r.oy), r.iy);
-    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.farIdx[2]]), r.oz), r.iz);
-    // maxps/minps return the second operand when either is NaN: the running value survives a
-    // 0·∞ lane exactly like the scalar comparisons in intersectBox.
-    __m128 tNear = _mm_max_ps(tx0, r.tLow);
-    tNear = _mm_max_ps(ty0, tNear);
-    tNear = _mm_max_ps(tz0, tNear);
-    __m128 tFar = _mm_min_ps(tx1, _mm_set1_ps(detail::kInfinity));
-    tFar = _mm_min_ps(ty1, tFar);
-    tFar = _mm_min_ps(tz1, tFar);
-    tFar = _mm_mul_ps(tFar, _mm_set1_ps(detail::kBoxFarScale));
-    const __m128 ok =
-        _mm_and_ps(_mm_cmple_ps(tNear, tFar), _mm_cmple_ps(tNear, _mm_set1_ps(tHigh)));
-    _mm_storeu_ps(tNear4, tNear);
-    const __m128i lm = _mm_and_si128(_mm_load_si128(reinterpret_cast<const __m128i *>(n.layerMask)),
-                                     _mm_set1_epi32(int(c.layerMask)));
-    const int masked = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(lm, _mm_setzero_si128())));
-    return _mm_movemask_ps(ok) & ~masked;
-#else
-    int bits = 0;
-    for (int lane = 0; lane < 4; ++lane) {
-        if (!(n.layerMask[lane] & c.layerMask)) continue;
-        const float b[6] = {n.bounds[0][lane], n.bounds[1][lane], n.bounds[2][lane],
-                            n.bounds[3][lane], n.bounds[4][lane], n.bounds[5][lane]};
-        if (intersectBox(b, c, tHigh, tNear4[lane])) bits |= 1 << lane;
-    }
-    return bits;
-#endif
-}
-
-template <bool AnyHit>
-bool Tracer::Private::traverse(const RayContext &c, Hit &best) const {
-    using detail::Bvh4Leaf;
-    if (bvh4.blockCount == 0) return false;
-    const detail::Bvh4Node *nodes = bvh4.nodes.get();
-    const detail::PrimBlock *blocks = bvh4.blocks.get();
-    const detail::PrimInfo *info = bvh4.info.data();
-    float tHigh = c.tMax * detail::kTraversalSlackUp;
-    float tEntry;
-    if (!(bvh4.rootMask & c.layerMask) || !intersectBox(bvh4.rootBounds, c, tHigh, tEntry))
-        return false;
-    // Only now: many rays miss the scene bounds, and the shear costs three divisions.
-    const WatertightRay wray(c.ray);
-    const detail::WatertightRay4 wray4(wray);
-    const NodeRay4 nodeRay(c);
-
-    struct Entry {
-        uint32_t ref;
-        float t;
-    };
-    Entry stack[kStackSize];
-    int sp = 0;
-    uint32_t cur = bvh4.root;
-    bool found = false;
-    for (;;) {
-        if (Bvh4Leaf::isLeaf(cur)) {
-            if (testLeaf<AnyHit>(cur, blocks, info, c, wray4, best)) {
-                if (AnyHit) return true;
-                found = true;
-                tHigh = std::min(c.tMax, best.t) * detail::kTraversalSlackUp;
-            }
-        } else {
-            float tNear[4];
-            int bits = intersectBox4(nodes[cur], nodeRay, tHigh, tNear);
-            if (bits) {
-                const uint32_t *child = nodes[cur].child;
-                if (AnyHit) {
-                    // Any hit ends the query, so ordering the children buys little for the
-                    // rays that are blocked and costs every ray that is not.
-                    int lane = std::countr_zero(unsigned(bits));
-                    bits &= bits - 1;
-                    cur = child[lane];
-                    while (bits) {
-                        lane = std::countr_zero(unsigned(bits));
-                        bits &= bits - 1;
-                        stack[sp++] = {child[lane], tNear[lane]};
-                    }
-                    continue;
-                }
-                Entry hitList[4];
-                int k = 0;
-                while (bits) {
-                    const int lane = std::countr_zero(unsigned(bits));
-                    bits &= bits - 1;
-                    // Insertion by descending t: the nearest child ends up last.
-                    int j = k++;
-                    while (j > 0 && hitList[j - 1].t < tNear[lane]) {
-                        hitList[j] = hitList[j - 1];
-                        --j;
-                    }
-                    hitList[j] = {child[lane], tNear[lane]};
-                }
-                for (int i = 0; i + 1 < k; ++i) stack[sp++] = hitList[i];
-                cur = hitList[k - 1].ref;
-                continue;
-            }
-        }
-        // Pop the nearest pending subtree that can still hold a closer hit.
-        for (;;) {
-            if (sp == 0) return found;
-            const Entry &e = stack[--sp];
-            if (e.t <= tHigh) {
-                cur = e.ref;
-                break;
-            }
-        }
-    }
-}
-
 Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
     : d(std::make_unique<Private>(scene, settings)) {
     const auto start = std::chrono::steady_clock::now();
 
+    const int threads = settings.buildThreads > 0
+                            ? settings.buildThreads
+                            : int(std::max(1u, std::thread::hardware_concurrency()));
     detail::BvhBuildInput input;
-    input.prims.reserve(scene.triangleCount() + scene.spheres.size());
+    input.threads = threads;
+    // Triangles in chunks of at most kChunk of one mesh: a parallel pass counts each chunk's
+    // valid triangles, a prefix sum places the chunks, a second parallel pass writes them, so
+    // the records come out in mesh and index order whatever the thread count.
+    struct Chunk {
+        uint32_t mesh, begin, end;
+        std::size_t valid = 0, offset = 0;
+    };
+    constexpr uint32_t kChunk = 16384;
+    std::vector<Chunk> chunks;
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-        const TriangleMesh &mesh = scene.meshes[m];
-        const uint8_t layer = clampLayer(mesh.layer);
+        const std::size_t count = scene.meshes[m].indices.size();
+        for (std::size_t b = 0; b < count; b += kChunk)
+            chunks.push_back(Chunk{uint32_t(m), uint32_t(b), uint32_t(std::min<std::size_t>(count, b + kChunk))});
+    }
+    // Calls emit(index, p0, p1, p2) for every valid triangle of the chunk, in order.
+    auto forValid = [&scene](const Chunk &ch, auto &&emit) {
+        const TriangleMesh &mesh = scene.meshes[ch.mesh];
         const std::size_t nv = mesh.positions.size();
-        for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
+        for (uint32_t i = ch.begin; i < ch.end; ++i) {
             const glm::uvec3 &tri = mesh.indices[i];
             if (tri.x >= nv || tri.y >= nv || tri.z >= nv) continue;
             const glm::vec3 &p0 = mesh.positions[tri.x];
@@ -385,19 +318,42 @@ Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
             const glm::vec3 &p2 = mesh.positions[tri.z];
             if (!isFinite(p0) || !isFinite(p1) || !isFinite(p2) || isDegenerate(p0, p1, p2))
                 continue;
-            input.prims.push_back(PrimRecord{p0, p1, p2, uint32_t(m), uint32_t(i),
-                                             uint8_t(PrimKind::Triangle), layer, 0});
+            emit(i, p0, p1, p2);
         }
+    };
+    detail::parallelFor(chunks.size(), threads, [&](std::size_t c) {
+        forValid(chunks[c], [&](uint32_t, const glm::vec3 &, const glm::vec3 &, const glm::vec3 &) {
+            ++chunks[c].valid;
+        });
+    });
+    std::size_t triangles = 0;
+    for (Chunk &ch : chunks) {
+        ch.offset = triangles;
+        triangles += ch.valid;
     }
-    d->stats.triangles = input.prims.size();
+    std::vector<uint32_t> validSpheres;
     for (std::size_t s = 0; s < scene.spheres.size(); ++s) {
         const Sphere &sp = scene.spheres[s];
-        if (!isFinite(sp.center) || !std::isfinite(sp.radius) || !(sp.radius > 0.f)) continue;
-        input.prims.push_back(PrimRecord{sp.center, glm::vec3(sp.radius, 0.f, 0.f), glm::vec3(0.f),
-                                         uint32_t(s), 0, uint8_t(PrimKind::Sphere),
-                                         clampLayer(sp.layer), 0});
-        ++d->stats.spheres;
+        if (isFinite(sp.center) && std::isfinite(sp.radius) && sp.radius > 0.f)
+            validSpheres.push_back(uint32_t(s));
     }
+    input.prims.allocate(triangles + validSpheres.size());
+    detail::parallelFor(chunks.size(), threads, [&](std::size_t c) {
+        const Chunk &ch = chunks[c];
+        const uint8_t layer = clampLayer(scene.meshes[ch.mesh].layer);
+        std::size_t out = ch.offset;
+        forValid(ch, [&](uint32_t i, const glm::vec3 &p0, const glm::vec3 &p1, const glm::vec3 &p2) {
+            input.prims[out++] = PrimRecord{p0, p1, p2, ch.mesh, i, uint8_t(PrimKind::Triangle), layer, 0};
+        });
+    });
+    d->stats.triangles = triangles;
+    for (std::size_t k = 0; k < validSpheres.size(); ++k) {
+        const Sphere &sp = scene.spheres[validSpheres[k]];
+        input.prims[triangles + k] =
+            PrimRecord{sp.center, glm::vec3(sp.radius, 0.f, 0.f), glm::vec3(0.f), validSpheres[k],
+                       0, uint8_t(PrimKind::Sphere), clampLayer(sp.layer), 0};
+    }
+    d->stats.spheres = validSpheres.size();
     for (std::size_t p = 0; p < scene.planes.size(); ++p) {
         const Plane &pl = scene.planes[p];
         const float len = glm::length(pl.normal);
@@ -409,18 +365,16 @@ Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
     d->stats.planes = d->planes.size();
 
     input.maxLeafSize = settings.maxLeafSize;
-    input.threads = settings.buildThreads > 0 ? settings.buildThreads
-                                              : int(std::max(1u, std::thread::hardware_concurrency()));
     {
         const detail::Bvh bvh = detail::buildBvh(std::move(input));
-        d->bvh4 = detail::collapseToBvh4(bvh);
+        d->wide = detail::collapseToWide(bvh, threads);
         d->stats.leaves = bvh.leafCount;
         d->stats.maxDepth = bvh.maxDepth;
     }
-    d->stats.nodes = d->bvh4.nodeCount;
-    d->stats.memoryBytes = d->bvh4.nodeCount * sizeof(detail::Bvh4Node) +
-                           d->bvh4.blockCount * sizeof(detail::PrimBlock) +
-                           d->bvh4.info.size() * sizeof(detail::PrimInfo) +
+    d->stats.nodes = d->wide.nodeCount;
+    d->stats.memoryBytes = d->wide.nodeCount * sizeof(detail::WideNode) +
+                           d->wide.blockCount * sizeof(detail::PrimBlock) +
+                           d->wide.info.size() * sizeof(detail::PrimInfo) +
                            d->planes.size() * sizeof(PlaneRecord);
     d->stats.buildMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -450,13 +404,13 @@ bool Tracer::closestHitBruteForce(const Ray &ray, const RayQuery &query, Hit &hi
     const RayContext c(ray, query);
     Hit best;
     bool found = false;
-    // Every lane through the scalar kernel: this is the oracle the 4-wide kernel is tested against.
-    const detail::Bvh4 &bvh4 = d->bvh4;
+    // Every lane through the scalar kernel: this is the oracle the 4-wide triangle kernel is tested against.
+    const detail::WideBvh &wide = d->wide;
     const WatertightRay wray(ray);
-    for (std::size_t b = 0; b < bvh4.blockCount; ++b) {
-        const detail::PrimBlock &block = bvh4.blocks[b];
+    for (std::size_t b = 0; b < wide.blockCount; ++b) {
+        const detail::PrimBlock &block = wide.blocks[b];
         for (int lane = 0; lane < 4; ++lane) {
-            const detail::PrimInfo &info = bvh4.info[4 * b + lane];
+            const detail::PrimInfo &info = wide.info[4 * b + lane];
             if (info.kind == uint8_t(PrimKind::Empty) || !((c.layerMask >> info.layer) & 1u))
                 continue;
             if (info.kind == uint8_t(PrimKind::Sphere)) {

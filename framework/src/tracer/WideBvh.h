@@ -1,7 +1,8 @@
 #pragma once
-// Private: the 4-wide BVH the tracer traverses, collapsed from the binary SAH tree. Four child
-// boxes per node are tested at once with SSE (SoA layout), which halves the node visits of the
-// binary tree and does the slab arithmetic four lanes at a time. Leaves point at PrimBlocks.
+// Private: the 8-wide BVH the tracer traverses, collapsed from the binary SAH tree. The eight
+// child boxes of a node (SoA layout) are tested at once with AVX2, or as two halves with SSE
+// (WideTraversal.inl); rays average only a few node visits, so fewer, wider nodes shorten the
+// dependent chain of node loads that dominates traversal. Leaves point at PrimBlocks.
 
 #include "Bvh.h"
 #include "PrimBlock.h"
@@ -13,20 +14,23 @@
 
 namespace mvcl::detail {
 
-/// 128 bytes (two cache lines). Lane i describes child i; an empty lane has an empty box and a
+/// Children per node.
+inline constexpr int kWidth = 8;
+
+/// 256 bytes (four cache lines). Lane i describes child i; an empty lane has an empty box and a
 /// zero layer mask so no query ever enters it.
-struct alignas(64) Bvh4Node {
-    float bounds[6][4];     ///< [min x, min y, min z, max x, max y, max z][lane]
-    uint32_t child[4];      ///< Bvh4Leaf encoding when the top bits are non-zero, else the index
-                            ///< of a Bvh4Node
-    uint32_t layerMask[4];  ///< union of the layer bits below each child
+struct alignas(64) WideNode {
+    float bounds[6][kWidth];     ///< [min x, min y, min z, max x, max y, max z][lane]
+    uint32_t child[kWidth];      ///< WideLeaf encoding when the top bits are non-zero, else the
+                                 ///< index of a WideNode
+    uint32_t layerMask[kWidth];  ///< union of the layer bits below each child
 };
-static_assert(sizeof(Bvh4Node) == 128);
+static_assert(sizeof(WideNode) == 256);
 
 /// A child reference that is a leaf: bits 31..28 the number of PrimBlocks (1..4), bits 27..1
 /// the first block, bit 0 set when a lane of the leaf is a sphere (the 4-wide triangle kernel
 /// skips sphere lanes; only then does the leaf need the scalar sphere loop).
-struct Bvh4Leaf {
+struct WideLeaf {
     static constexpr uint32_t kCountShift = 28;
     static constexpr uint32_t kMaxBlocks = 4; ///< BvhNode::kMaxLeafCount primitives at most
 
@@ -39,8 +43,8 @@ struct Bvh4Leaf {
     static bool hasSpheres(uint32_t ref) { return ref & 1u; }
 };
 
-struct Bvh4 {
-    std::unique_ptr<Bvh4Node[], AlignedFree> nodes;
+struct WideBvh {
+    std::unique_ptr<WideNode[], AlignedFree> nodes;
     std::size_t nodeCount = 0;
     uint32_t root = 0;     ///< child reference of the root (a leaf for tiny scenes)
     uint32_t rootMask = 0; ///< layer mask of everything
@@ -50,8 +54,8 @@ struct Bvh4 {
     std::vector<PrimInfo> info; ///< 4 per block
 };
 
-/// Collapses a binary BVH (root at node 0) into a 4-wide one, pulling up the grandchildren with
+/// Collapses a binary BVH (root at node 0) into an 8-wide one, pulling up the grandchildren with
 /// the largest surface area first, and packs the leaves' primitives into PrimBlocks.
-Bvh4 collapseToBvh4(const Bvh &bvh);
+WideBvh collapseToWide(const Bvh &bvh, int threads);
 
 } // namespace mvcl::detail

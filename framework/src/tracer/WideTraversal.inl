@@ -1,0 +1,195 @@
+// Private: the wide-BVH traversal loop, included twice by Tracer.cpp: once as namespace `sse`
+// (two 4-lane halves per node, the baseline of every x86-64 CPU) and once as namespace `avx2`
+// inside a `#pragma GCC target("avx2")` region (all eight lanes in one 256-bit test), chosen at
+// run time. No include guard on purpose. Both node tests do the same IEEE min/max/sub/mul per
+// lane as the scalar intersectBox(), so the two variants visit the same nodes and return
+// bit-identical hits (the tests force each and compare).
+//
+// Expects MVCL_TRAVERSAL_NS (the namespace) and MVCL_TRAVERSAL_AVX2 (0 or 1), and the helpers of
+// Tracer.cpp (intersectBox, testLeaf, RayContext) to be visible.
+
+namespace MVCL_TRAVERSAL_NS {
+
+using detail::kWidth;
+using detail::WideLeaf;
+using detail::WideNode;
+
+/// The per-ray constants of intersectNode(), broadcast once per query.
+struct NodeRay {
+    const RayContext &c;
+#if MVCL_TRAVERSAL_AVX2
+    __m256 ox, oy, oz, ix, iy, iz, tLow;
+
+    explicit NodeRay(const RayContext &ctx)
+        : c(ctx), ox(_mm256_set1_ps(ctx.ray.origin.x)), oy(_mm256_set1_ps(ctx.ray.origin.y)),
+          oz(_mm256_set1_ps(ctx.ray.origin.z)), ix(_mm256_set1_ps(ctx.invDir.x)),
+          iy(_mm256_set1_ps(ctx.invDir.y)), iz(_mm256_set1_ps(ctx.invDir.z)),
+          tLow(_mm256_set1_ps(ctx.tLow)) {}
+#elif defined(__SSE2__)
+    __m128 ox, oy, oz, ix, iy, iz, tLow;
+
+    explicit NodeRay(const RayContext &ctx)
+        : c(ctx), ox(_mm_set1_ps(ctx.ray.origin.x)), oy(_mm_set1_ps(ctx.ray.origin.y)),
+          oz(_mm_set1_ps(ctx.ray.origin.z)), ix(_mm_set1_ps(ctx.invDir.x)),
+          iy(_mm_set1_ps(ctx.invDir.y)), iz(_mm_set1_ps(ctx.invDir.z)),
+          tLow(_mm_set1_ps(ctx.tLow)) {}
+#else
+    explicit NodeRay(const RayContext &ctx) : c(ctx) {}
+#endif
+};
+
+#if !MVCL_TRAVERSAL_AVX2 && defined(__SSE2__)
+/// Lanes [first, first + 4) of intersectNode().
+inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 tHigh,
+                         float *tNear4) {
+    const RayContext &c = r.c;
+    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.nearIdx[0]] + first), r.ox), r.ix);
+    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.nearIdx[1]] + first), r.oy), r.iy);
+    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.nearIdx[2]] + first), r.oz), r.iz);
+    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.farIdx[0]] + first), r.ox), r.ix);
+    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.farIdx[1]] + first), r.oy), r.iy);
+    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.farIdx[2]] + first), r.oz), r.iz);
+    // maxps/minps return the second operand when either is NaN: the running value survives a
+    // 0·∞ lane exactly like the scalar comparisons in intersectBox.
+    __m128 tNear = _mm_max_ps(tx0, r.tLow);
+    tNear = _mm_max_ps(ty0, tNear);
+    tNear = _mm_max_ps(tz0, tNear);
+    __m128 tFar = _mm_min_ps(tx1, _mm_set1_ps(detail::kInfinity));
+    tFar = _mm_min_ps(ty1, tFar);
+    tFar = _mm_min_ps(tz1, tFar);
+    tFar = _mm_mul_ps(tFar, _mm_set1_ps(detail::kBoxFarScale));
+    const __m128 ok = _mm_and_ps(_mm_cmple_ps(tNear, tFar), _mm_cmple_ps(tNear, tHigh));
+    _mm_storeu_ps(tNear4, tNear);
+    const __m128i lm =
+        _mm_and_si128(_mm_load_si128(reinterpret_cast<const __m128i *>(n.layerMask + first)),
+                      _mm_set1_epi32(int(c.layerMask)));
+    const int masked = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(lm, _mm_setzero_si128())));
+    return _mm_movemask_ps(ok) & ~masked;
+}
+#endif
+
+/// Slab test of the children of a node (the arithmetic of intersectBox, lane by lane). Returns
+/// the bit mask of the lanes entered and their entry distances (tOut is 32-byte aligned).
+inline int intersectNode(const WideNode &n, const NodeRay &r, float tHigh, float tOut[kWidth]) {
+#if MVCL_TRAVERSAL_AVX2
+    const RayContext &c = r.c;
+    const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[c.nearIdx[0]]), r.ox), r.ix);
+    const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[c.nearIdx[1]]), r.oy), r.iy);
+    const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[c.nearIdx[2]]), r.oz), r.iz);
+    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[c.farIdx[0]]), r.ox), r.ix);
+    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[c.farIdx[1]]), r.oy), r.iy);
+    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[c.farIdx[2]]), r.oz), r.iz);
+    // vmaxps/vminps have the NaN rule of maxps/minps (second operand), as in the SSE path.
+    __m256 tNear = _mm256_max_ps(tx0, r.tLow);
+    tNear = _mm256_max_ps(ty0, tNear);
+    tNear = _mm256_max_ps(tz0, tNear);
+    __m256 tFar = _mm256_min_ps(tx1, _mm256_set1_ps(detail::kInfinity));
+    tFar = _mm256_min_ps(ty1, tFar);
+    tFar = _mm256_min_ps(tz1, tFar);
+    tFar = _mm256_mul_ps(tFar, _mm256_set1_ps(detail::kBoxFarScale));
+    const __m256 ok = _mm256_and_ps(_mm256_cmp_ps(tNear, tFar, _CMP_LE_OQ),
+                                    _mm256_cmp_ps(tNear, _mm256_set1_ps(tHigh), _CMP_LE_OQ));
+    _mm256_store_ps(tOut, tNear);
+    const __m256i lm =
+        _mm256_and_si256(_mm256_load_si256(reinterpret_cast<const __m256i *>(n.layerMask)),
+                         _mm256_set1_epi32(int(c.layerMask)));
+    const int masked =
+        _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(lm, _mm256_setzero_si256())));
+    return _mm256_movemask_ps(ok) & ~masked;
+#elif defined(__SSE2__)
+    const __m128 high = _mm_set1_ps(tHigh);
+    return intersectHalf(n, r, 0, high, tOut) | (intersectHalf(n, r, 4, high, tOut + 4) << 4);
+#else
+    const RayContext &c = r.c;
+    int bits = 0;
+    for (int lane = 0; lane < kWidth; ++lane) {
+        if (!(n.layerMask[lane] & c.layerMask)) continue;
+        const float b[6] = {n.bounds[0][lane], n.bounds[1][lane], n.bounds[2][lane],
+                            n.bounds[3][lane], n.bounds[4][lane], n.bounds[5][lane]};
+        if (intersectBox(b, c, tHigh, tOut[lane])) bits |= 1 << lane;
+    }
+    return bits;
+#endif
+}
+
+/// Closest hit (AnyHit = false: updates `best`, returns whether anything was found) or any hit
+/// (returns true on the first accepted hit) over the wide BVH.
+template <bool AnyHit>
+bool traverse(const detail::WideBvh &wide, const RayContext &c, Hit &best) {
+    if (wide.blockCount == 0) return false;
+    const WideNode *nodes = wide.nodes.get();
+    const detail::PrimBlock *blocks = wide.blocks.get();
+    const detail::PrimInfo *info = wide.info.data();
+    float tHigh = c.tMax * detail::kTraversalSlackUp;
+    float tEntry;
+    if (!(wide.rootMask & c.layerMask) || !intersectBox(wide.rootBounds, c, tHigh, tEntry))
+        return false;
+    // Only now: many rays miss the scene bounds, and the shear costs three divisions.
+    const WatertightRay wray(c.ray);
+    const detail::WatertightRay4 wray4(wray);
+    const NodeRay nodeRay(c);
+
+    struct Entry {
+        uint32_t ref;
+        float t;
+    };
+    Entry stack[kStackSize];
+    int sp = 0;
+    uint32_t cur = wide.root;
+    bool found = false;
+    for (;;) {
+        if (WideLeaf::isLeaf(cur)) {
+            if (testLeaf<AnyHit>(cur, blocks, info, c, wray4, best)) {
+                if (AnyHit) return true;
+                found = true;
+                tHigh = std::min(c.tMax, best.t) * detail::kTraversalSlackUp;
+            }
+        } else {
+            alignas(32) float tNear[kWidth];
+            int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
+            if (bits) {
+                const uint32_t *child = nodes[cur].child;
+                if (AnyHit) {
+                    // Any hit ends the query, so ordering the children buys little for the
+                    // rays that are blocked and costs every ray that is not.
+                    int lane = std::countr_zero(unsigned(bits));
+                    bits &= bits - 1;
+                    cur = child[lane];
+                    while (bits) {
+                        lane = std::countr_zero(unsigned(bits));
+                        bits &= bits - 1;
+                        stack[sp++] = {child[lane], tNear[lane]};
+                    }
+                    continue;
+                }
+                Entry hitList[kWidth];
+                int k = 0;
+                while (bits) {
+                    const int lane = std::countr_zero(unsigned(bits));
+                    bits &= bits - 1;
+                    // Insertion by descending t: the nearest child ends up last.
+                    int j = k++;
+                    while (j > 0 && hitList[j - 1].t < tNear[lane]) {
+                        hitList[j] = hitList[j - 1];
+                        --j;
+                    }
+                    hitList[j] = {child[lane], tNear[lane]};
+                }
+                for (int i = 0; i + 1 < k; ++i) stack[sp++] = hitList[i];
+                cur = hitList[k - 1].ref;
+                continue;
+            }
+        }
+        // Pop the nearest pending subtree that can still hold a closer hit.
+        for (;;) {
+            if (sp == 0) return found;
+            const Entry &e = stack[--sp];
+            if (e.t <= tHigh) {
+                cur = e.ref;
+                break;
+            }
+        }
+    }
+}
+
+} // namespace MVCL_TRAVERSAL_NS
