@@ -47,28 +47,29 @@ static_assert(sizeof(PrimRecord) == 48);
 
 static_assert(std::is_trivially_default_constructible_v<PrimRecord>);
 
+struct AlignedFree {
+    void operator()(void *p) const;
+};
+
+/// 64-byte aligned memory for node and leaf arrays (a node never straddles more cache lines
+/// than it must), released with AlignedFree. Not initialised. Arrays of several MiB go on
+/// transparent huge pages when the system allows it.
+void *allocateAligned(std::size_t bytes);
+
 /// The build input records. Not a std::vector: they are written by parallel chunks right after
 /// allocation, and value-initialising hundreds of thousands first would be a serial pass.
 struct PrimArray {
-    std::unique_ptr<PrimRecord[]> data;
+    std::unique_ptr<PrimRecord[], AlignedFree> data;
     std::size_t count = 0;
 
     void allocate(std::size_t n) {
-        data = std::make_unique_for_overwrite<PrimRecord[]>(n);
+        data.reset(static_cast<PrimRecord *>(allocateAligned(n * sizeof(PrimRecord))));
         count = n;
     }
     std::size_t size() const { return count; }
     PrimRecord &operator[](std::size_t i) { return data[i]; }
     const PrimRecord &operator[](std::size_t i) const { return data[i]; }
 };
-
-struct AlignedFree {
-    void operator()(void *p) const;
-};
-
-/// 64-byte aligned memory for node and leaf arrays (a node never straddles more cache lines
-/// than it must), released with AlignedFree.
-void *allocateAligned(std::size_t bytes);
 
 /// The binary SAH tree. Node 0 is the root; the children of an interior node are the adjacent
 /// pair (offset, offset + 1). Pairs are allocated as tasks reach them, so slot positions (unlike
@@ -90,7 +91,7 @@ struct BvhBuildInput {
 };
 
 /// Binned SAH build with leaf costs counted in blocks of four primitives (what the 4-wide
-/// triangle kernel tests at once), multithreaded over the top-level splits. Deterministic: the
+/// triangle kernel tests at once), multithreaded over subtrees (TaskPool.h). Deterministic: the
 /// tree does not depend on the thread count.
 Bvh buildBvh(BvhBuildInput input);
 

@@ -1,12 +1,14 @@
 // Binned SAH BVH build (Wald 2007 style binning, up to 32 bins, all three axes in one pass),
-// parallel over the top-level splits. Each node receives its bounds and centroid bounds from
-// its parent (the partition pass computes them for both children), so a node reads its
-// primitives twice: once to bin, once to partition. The tree depends only on the input, never
-// on the thread count; only the slots of child pairs (taken from an atomic counter) do, and
-// the wide collapse lays out its output independently of them.
+// parallel over subtrees: every node of at least kMinParallelPrims pushes one child to a task
+// pool, at any depth, so no large subtree is left to one thread at the end. Each node receives
+// its bounds and centroid bounds from its parent (the partition pass computes them for both
+// children), so a node reads its primitives twice: once to bin, once to partition. The tree
+// depends only on the input, never on the thread count; only the slots of child pairs (taken
+// from an atomic counter) do, and the wide collapse lays out its output independently of them.
 
 #include "Bvh.h"
 #include "ParallelFor.h"
+#include "TaskPool.h"
 
 #include <glm/common.hpp>
 
@@ -17,7 +19,11 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <future>
+#include <mutex>
+#include <utility>
+#include <vector>
 #include <limits>
 #include <new>
 #include <string>
@@ -25,19 +31,34 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 namespace mvcl::detail {
 
 void AlignedFree::operator()(void *p) const { std::free(p); }
 
 void *allocateAligned(std::size_t bytes) {
+#if defined(__linux__)
+    // Large arrays (build nodes, wide nodes, leaf blocks: megabytes written once, right after
+    // allocation) on transparent huge pages where the system allows them on request: thousands
+    // of 4 KiB first-touch faults were a visible share of the build.
+    constexpr std::size_t kHuge = std::size_t(2) << 20;
+    if (bytes >= 2 * kHuge) {
+        const std::size_t size = (bytes + kHuge - 1) / kHuge * kHuge;
+        void *p = std::aligned_alloc(kHuge, size);
+        if (!p) throw std::bad_alloc();
+        madvise(p, size, MADV_HUGEPAGE); // a hint: failure only means small pages
+        return p;
+    }
+#endif
     void *p = std::aligned_alloc(64, std::max<std::size_t>(64, (bytes + 63) / 64 * 64));
     if (!p) throw std::bad_alloc();
     return p;
 }
 
 namespace {
-
 constexpr int kBins = 32;
 /// A subtree deeper than this is split at the object median: keeps the traversal stack bounded
 /// for adversarial input (the stack holds at most depth entries).
@@ -70,11 +91,17 @@ double halfArea(const glm::vec3 &lo, const glm::vec3 &hi) {
     return dx * dy + dy * dz + dz * dx;
 }
 
+struct NoInit {};
+
 /// Bounds grown four lanes at a time (SSE when available); lane 3 is ignored.
 struct Box4 {
 #if defined(__SSE2__)
-    __m128 lo = _mm_set1_ps(std::numeric_limits<float>::infinity());
-    __m128 hi = _mm_set1_ps(-std::numeric_limits<float>::infinity());
+    __m128 lo, hi;
+    Box4()
+        : lo(_mm_set1_ps(std::numeric_limits<float>::infinity())),
+          hi(_mm_set1_ps(-std::numeric_limits<float>::infinity())) {}
+    /// Left for the caller to fill (bins: only the ones in use are reset).
+    explicit Box4(NoInit) {}
     void grow(__m128 pLo, __m128 pHi) {
         lo = _mm_min_ps(lo, pLo);
         hi = _mm_max_ps(hi, pHi);
@@ -96,8 +123,9 @@ struct Box4 {
         return {f[0], f[1], f[2]};
     }
 #else
-    glm::vec3 lo{std::numeric_limits<float>::infinity()};
-    glm::vec3 hi{-std::numeric_limits<float>::infinity()};
+    glm::vec3 lo, hi;
+    Box4() : lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity()) {}
+    explicit Box4(NoInit) {}
     void grow(const glm::vec3 &pLo, const glm::vec3 &pHi) {
         lo = glm::min(lo, pLo);
         hi = glm::max(hi, pHi);
@@ -185,10 +213,22 @@ struct Binner {
     }
 };
 
-/// Per-axis bins of a primitive range: bounds and counts.
+/// Per-axis bins of a primitive range: bounds and counts. Only the first nBins of each axis are
+/// initialised: resetting all 3 × 32 dominated the cost of small nodes.
 struct BinSet {
-    Box4 boxes[3][kBins];
-    uint32_t counts[3][kBins] = {};
+    struct Bin : Box4 {
+        Bin() : Box4(NoInit{}) {}
+    };
+    Bin boxes[3][kBins];
+    uint32_t counts[3][kBins];
+
+    explicit BinSet(int nBins) {
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < nBins; ++b) {
+                static_cast<Box4 &>(boxes[axis][b]) = Box4{};
+                counts[axis][b] = 0;
+            }
+    }
 
     void add(const Binner &binner, const BuildPrim *prims, uint32_t begin, uint32_t end) {
         for (uint32_t i = begin; i < end; ++i) {
@@ -212,8 +252,9 @@ struct BinSet {
 
 class Builder {
 public:
-    Builder(BuildPrim *prims, BvhNode *slots, int maxLeaf, int spawnDepth)
-        : m_prims(prims), m_slots(slots), m_maxLeaf(maxLeaf), m_spawnDepth(spawnDepth) {}
+    /// pool: where subtrees are pushed as tasks (null: build everything on the calling thread).
+    Builder(BuildPrim *prims, BvhNode *slots, int maxLeaf, TaskPool *pool)
+        : m_prims(prims), m_slots(slots), m_maxLeaf(maxLeaf), m_pool(pool) {}
 
     /// Builds the subtree of [begin, end) into `slot`; `bounds` are that range's bounds.
     void build(uint32_t slot, uint32_t begin, uint32_t end, int depth, const RangeBounds &bounds) {
@@ -225,7 +266,9 @@ public:
         noteDepth(depth);
 
         const uint32_t n = end - begin;
-        if (n == 1) return makeLeaf(node, begin, n);
+        // A split costs the traversal step plus at least one block per side, more than the
+        // single block of a leaf of up to four: such a node is a leaf whatever findSplit finds.
+        if (n <= std::min<uint32_t>(uint32_t(m_maxLeaf), kBlockSize)) return makeLeaf(node, begin, n);
 
         // Fewer bins for small nodes: initialising 3 × 32 bins dominates the cost near the leaves.
         Binner binner{clo, glm::vec3(0.f), int(std::min<uint32_t>(kBins, std::max<uint32_t>(4, n)))};
@@ -268,17 +311,27 @@ public:
 
         const uint32_t base = m_nextSlot.fetch_add(2, std::memory_order_relaxed);
         node.index = base; // interior: children at base, base + 1
-        if (depth < m_spawnDepth && n >= kMinParallelPrims) {
-            auto leftTask = std::async(std::launch::async, [&, base, begin, mid, depth, this] {
-                build(base, begin, mid, depth + 1, left);
-            });
+        if (m_pool && n >= kMinParallelPrims) {
+            // Left as a task for any idle thread, right here. Neither waits for the other: the
+            // layer mask of this node is filled in by finishLayerMasks() afterwards.
+            m_pool->push([this, base, begin, mid, depth, left] { build(base, begin, mid, depth + 1, left); });
             build(base + 1, mid, end, depth + 1, right);
-            leftTask.get();
-        } else {
-            build(base, begin, mid, depth + 1, left);
-            build(base + 1, mid, end, depth + 1, right);
+            std::lock_guard<std::mutex> lock(m_spawnedMutex);
+            m_spawned.push_back({depth, slot});
+            return;
         }
+        build(base, begin, mid, depth + 1, left);
+        build(base + 1, mid, end, depth + 1, right);
         node.layerMask = m_slots[base].layerMask | m_slots[base + 1].layerMask;
+    }
+
+    /// Layer masks of the nodes that spawned a task, deepest first (their children are done).
+    void finishLayerMasks() {
+        std::sort(m_spawned.begin(), m_spawned.end(), std::greater<>());
+        for (const auto &[depth, slot] : m_spawned) {
+            BvhNode &node = m_slots[slot];
+            node.layerMask = m_slots[node.offset()].layerMask | m_slots[node.offset() + 1].layerMask;
+        }
     }
 
     int maxDepth() const { return m_maxDepth.load(); }
@@ -291,12 +344,12 @@ private:
     void findSplit(const Binner &binner, uint32_t begin, uint32_t end, int &bestAxis,
                    int &bestSplit, double &bestCost) const {
         const int nBins = binner.nBins;
-        BinSet all;
-        if (m_spawnDepth > 0 && end - begin >= kMinParallelBinning) {
+        BinSet all(nBins);
+        if (m_pool && end - begin >= kMinParallelBinning) {
             // The top nodes would otherwise bin alone: bin the halves on two threads. Merging
             // bins (min/max and integer counts) is exact, so the result is the same.
             const uint32_t mid = begin + (end - begin) / 2;
-            BinSet upper;
+            BinSet upper(nBins);
             auto task = std::async(std::launch::async, [&] { upper.add(binner, m_prims, mid, end); });
             all.add(binner, m_prims, begin, mid);
             task.get();
@@ -308,7 +361,7 @@ private:
         const auto &counts = all.counts;
         for (int axis = 0; axis < 3; ++axis) {
             if (binner.scale[axis] == 0.f) continue;
-            const Box4 *axisBins = bins[axis];
+            const BinSet::Bin *axisBins = bins[axis];
             const uint32_t *axisCounts = counts[axis];
             double rightCost[kBins];
             Box4 acc;
@@ -371,7 +424,9 @@ private:
     BuildPrim *m_prims;
     BvhNode *m_slots;
     int m_maxLeaf;
-    int m_spawnDepth;
+    TaskPool *m_pool;
+    std::mutex m_spawnedMutex;
+    std::vector<std::pair<int, uint32_t>> m_spawned; ///< (depth, slot) of nodes that spawned
     std::atomic<uint32_t> m_nextSlot{1}; ///< slot 0 is the root
     std::atomic<int> m_maxDepth{0};
     std::atomic<std::size_t> m_leafCount{0};
@@ -394,7 +449,8 @@ Bvh buildBvh(BvhBuildInput input) {
     // Boxes in parallel chunks; the root bounds are merged from per-chunk bounds (min/max is
     // exact in any order).
     // Not value-initialised: the chunks below write every record.
-    const std::unique_ptr<BuildPrim[]> build = std::make_unique_for_overwrite<BuildPrim[]>(n);
+    const std::unique_ptr<BuildPrim[], AlignedFree> build(
+        static_cast<BuildPrim *>(allocateAligned(n * sizeof(BuildPrim))));
     constexpr std::size_t kChunk = 16384;
     const std::size_t chunks = (n + kChunk - 1) / kChunk;
     std::vector<RangeBounds> chunkBounds(chunks);
@@ -430,21 +486,24 @@ Bvh buildBvh(BvhBuildInput input) {
     }
 
     const int maxLeaf = std::clamp(input.maxLeafSize, 1, int(BvhNode::kMaxLeafCount));
-    int spawnDepth = 0;
-    if (input.threads > 1) {
-        // A few more tasks than threads so uneven splits still keep every core busy.
-        while ((1 << spawnDepth) < input.threads) ++spawnDepth;
-        spawnDepth += 2;
-    }
-
     // At most n leaves, so at most 2n − 1 nodes; pages past the ones used are never touched.
     bvh.nodes = allocateNodes(2 * n);
-    Builder builder(build.get(), bvh.nodes.get(), maxLeaf, spawnDepth);
-    builder.build(0, 0, uint32_t(n), 0, rootBounds);
+    if (input.threads > 1) {
+        TaskPool pool;
+        Builder builder(build.get(), bvh.nodes.get(), maxLeaf, &pool);
+        pool.run(input.threads, [&] { builder.build(0, 0, uint32_t(n), 0, rootBounds); });
+        builder.finishLayerMasks();
+        bvh.nodeCount = builder.slotsUsed();
+        bvh.leafCount = builder.leafCount();
+        bvh.maxDepth = builder.maxDepth();
+    } else {
+        Builder builder(build.get(), bvh.nodes.get(), maxLeaf, nullptr);
+        builder.build(0, 0, uint32_t(n), 0, rootBounds);
+        bvh.nodeCount = builder.slotsUsed();
+        bvh.leafCount = builder.leafCount();
+        bvh.maxDepth = builder.maxDepth();
+    }
 
-    bvh.nodeCount = builder.slotsUsed();
-    bvh.leafCount = builder.leafCount();
-    bvh.maxDepth = builder.maxDepth();
     bvh.order.resize(n);
     for (std::size_t i = 0; i < n; ++i) bvh.order[i] = build[i].id;
     bvh.prims = std::move(input.prims);

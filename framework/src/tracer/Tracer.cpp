@@ -374,7 +374,7 @@ Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
     d->stats.nodes = d->wide.nodeCount;
     d->stats.memoryBytes = d->wide.nodeCount * sizeof(detail::WideNode) +
                            d->wide.blockCount * sizeof(detail::PrimBlock) +
-                           d->wide.info.size() * sizeof(detail::PrimInfo) +
+                           4 * d->wide.blockCount * sizeof(detail::PrimInfo) +
                            d->planes.size() * sizeof(PlaneRecord);
     d->stats.buildMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -51,7 +51,7 @@ struct WideBvh {
     float rootBounds[6] = {};
     std::unique_ptr<PrimBlock[], AlignedFree> blocks; ///< leaf primitives, in traversal-DFS order
     std::size_t blockCount = 0;
-    std::vector<PrimInfo> info; ///< 4 per block
+    std::unique_ptr<PrimInfo[], AlignedFree> info; ///< 4 per block (written by the collapse)
 };
 
 /// Collapses a binary BVH (root at node 0) into an 8-wide one, pulling up the grandchildren with

@@ -201,7 +201,8 @@ WideBvh collapseToWide(const Bvh &bvh, int threads) {
     out.nodeCount = nodeCount;
     out.blockCount = blockCount;
     out.blocks = allocateArray<PrimBlock>(blockCount);
-    out.info.resize(4 * std::size_t(blockCount));
+    // Not value-initialised: the tasks below write every lane, each on its own thread.
+    out.info = allocateArray<PrimInfo>(4 * std::size_t(blockCount));
     parallelFor(tasks.size(), threads, [&](std::size_t i) {
         const Task &t = tasks[i];
         Collapser c(bvh, out, t.nodeBase, t.blockBase);

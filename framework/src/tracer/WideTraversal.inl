@@ -17,6 +17,10 @@ using detail::WideNode;
 /// The per-ray constants of intersectNode(), broadcast once per query.
 struct NodeRay {
     const RayContext &c;
+    /// c.nearIdx / c.farIdx copied here: a local the compiler keeps in registers, instead of
+    /// reloading them through `c` after every leaf call.
+    int near[3], far[3];
+    uint32_t layerMask;
 #if MVCL_TRAVERSAL_AVX2
     __m256 ox, oy, oz, ix, iy, iz, tLow;
 
@@ -24,7 +28,9 @@ struct NodeRay {
         : c(ctx), ox(_mm256_set1_ps(ctx.ray.origin.x)), oy(_mm256_set1_ps(ctx.ray.origin.y)),
           oz(_mm256_set1_ps(ctx.ray.origin.z)), ix(_mm256_set1_ps(ctx.invDir.x)),
           iy(_mm256_set1_ps(ctx.invDir.y)), iz(_mm256_set1_ps(ctx.invDir.z)),
-          tLow(_mm256_set1_ps(ctx.tLow)) {}
+          tLow(_mm256_set1_ps(ctx.tLow)) {
+        copyIdx();
+    }
 #elif defined(__SSE2__)
     __m128 ox, oy, oz, ix, iy, iz, tLow;
 
@@ -32,23 +38,31 @@ struct NodeRay {
         : c(ctx), ox(_mm_set1_ps(ctx.ray.origin.x)), oy(_mm_set1_ps(ctx.ray.origin.y)),
           oz(_mm_set1_ps(ctx.ray.origin.z)), ix(_mm_set1_ps(ctx.invDir.x)),
           iy(_mm_set1_ps(ctx.invDir.y)), iz(_mm_set1_ps(ctx.invDir.z)),
-          tLow(_mm_set1_ps(ctx.tLow)) {}
+          tLow(_mm_set1_ps(ctx.tLow)) {
+        copyIdx();
+    }
 #else
-    explicit NodeRay(const RayContext &ctx) : c(ctx) {}
+    explicit NodeRay(const RayContext &ctx) : c(ctx) { copyIdx(); }
 #endif
+    void copyIdx() {
+        for (int k = 0; k < 3; ++k) {
+            near[k] = c.nearIdx[k];
+            far[k] = c.farIdx[k];
+        }
+        layerMask = c.layerMask;
+    }
 };
 
 #if !MVCL_TRAVERSAL_AVX2 && defined(__SSE2__)
 /// Lanes [first, first + 4) of intersectNode().
 inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 tHigh,
                          float *tNear4) {
-    const RayContext &c = r.c;
-    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.nearIdx[0]] + first), r.ox), r.ix);
-    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.nearIdx[1]] + first), r.oy), r.iy);
-    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.nearIdx[2]] + first), r.oz), r.iz);
-    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.farIdx[0]] + first), r.ox), r.ix);
-    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.farIdx[1]] + first), r.oy), r.iy);
-    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[c.farIdx[2]] + first), r.oz), r.iz);
+    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[0]] + first), r.ox), r.ix);
+    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[1]] + first), r.oy), r.iy);
+    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[2]] + first), r.oz), r.iz);
+    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[0]] + first), r.ox), r.ix);
+    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[1]] + first), r.oy), r.iy);
+    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[2]] + first), r.oz), r.iz);
     // maxps/minps return the second operand when either is NaN: the running value survives a
     // 0·∞ lane exactly like the scalar comparisons in intersectBox.
     __m128 tNear = _mm_max_ps(tx0, r.tLow);
@@ -62,7 +76,7 @@ inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 
     _mm_storeu_ps(tNear4, tNear);
     const __m128i lm =
         _mm_and_si128(_mm_load_si128(reinterpret_cast<const __m128i *>(n.layerMask + first)),
-                      _mm_set1_epi32(int(c.layerMask)));
+                      _mm_set1_epi32(int(r.layerMask)));
     const int masked = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(lm, _mm_setzero_si128())));
     return _mm_movemask_ps(ok) & ~masked;
 }
@@ -72,13 +86,12 @@ inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 
 /// the bit mask of the lanes entered and their entry distances (tOut is 32-byte aligned).
 inline int intersectNode(const WideNode &n, const NodeRay &r, float tHigh, float tOut[kWidth]) {
 #if MVCL_TRAVERSAL_AVX2
-    const RayContext &c = r.c;
-    const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[c.nearIdx[0]]), r.ox), r.ix);
-    const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[c.nearIdx[1]]), r.oy), r.iy);
-    const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[c.nearIdx[2]]), r.oz), r.iz);
-    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[c.farIdx[0]]), r.ox), r.ix);
-    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[c.farIdx[1]]), r.oy), r.iy);
-    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[c.farIdx[2]]), r.oz), r.iz);
+    const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[0]]), r.ox), r.ix);
+    const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[1]]), r.oy), r.iy);
+    const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[2]]), r.oz), r.iz);
+    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[0]]), r.ox), r.ix);
+    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[1]]), r.oy), r.iy);
+    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[2]]), r.oz), r.iz);
     // vmaxps/vminps have the NaN rule of maxps/minps (second operand), as in the SSE path.
     __m256 tNear = _mm256_max_ps(tx0, r.tLow);
     tNear = _mm256_max_ps(ty0, tNear);
@@ -92,7 +105,7 @@ inline int intersectNode(const WideNode &n, const NodeRay &r, float tHigh, float
     _mm256_store_ps(tOut, tNear);
     const __m256i lm =
         _mm256_and_si256(_mm256_load_si256(reinterpret_cast<const __m256i *>(n.layerMask)),
-                         _mm256_set1_epi32(int(c.layerMask)));
+                         _mm256_set1_epi32(int(r.layerMask)));
     const int masked =
         _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(lm, _mm256_setzero_si256())));
     return _mm256_movemask_ps(ok) & ~masked;
@@ -119,7 +132,7 @@ bool traverse(const detail::WideBvh &wide, const RayContext &c, Hit &best) {
     if (wide.blockCount == 0) return false;
     const WideNode *nodes = wide.nodes.get();
     const detail::PrimBlock *blocks = wide.blocks.get();
-    const detail::PrimInfo *info = wide.info.data();
+    const detail::PrimInfo *info = wide.info.get();
     float tHigh = c.tMax * detail::kTraversalSlackUp;
     float tEntry;
     if (!(wide.rootMask & c.layerMask) || !intersectBox(wide.rootBounds, c, tHigh, tEntry))
@@ -162,21 +175,30 @@ bool traverse(const detail::WideBvh &wide, const RayContext &c, Hit &best) {
                     }
                     continue;
                 }
-                Entry hitList[kWidth];
-                int k = 0;
-                while (bits) {
-                    const int lane = std::countr_zero(unsigned(bits));
+                // One child (the common case deep in the tree) needs no stack at all. Otherwise
+                // the children go straight onto the stack, kept in descending t by insertion
+                // (stable, so equal t keep lane order), and the nearest is popped back: no
+                // scratch list to copy.
+                int lane = std::countr_zero(unsigned(bits));
+                bits &= bits - 1;
+                if (!bits) {
+                    cur = child[lane];
+                    continue;
+                }
+                const int base = sp;
+                stack[sp++] = {child[lane], tNear[lane]};
+                do {
+                    lane = std::countr_zero(unsigned(bits));
                     bits &= bits - 1;
-                    // Insertion by descending t: the nearest child ends up last.
-                    int j = k++;
-                    while (j > 0 && hitList[j - 1].t < tNear[lane]) {
-                        hitList[j] = hitList[j - 1];
+                    const Entry e{child[lane], tNear[lane]};
+                    int j = sp++;
+                    while (j > base && stack[j - 1].t < e.t) {
+                        stack[j] = stack[j - 1];
                         --j;
                     }
-                    hitList[j] = {child[lane], tNear[lane]};
-                }
-                for (int i = 0; i + 1 < k; ++i) stack[sp++] = hitList[i];
-                cur = hitList[k - 1].ref;
+                    stack[j] = e;
+                } while (bits);
+                cur = stack[--sp].ref;
                 continue;
             }
         }
