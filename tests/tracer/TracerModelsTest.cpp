@@ -2,6 +2,7 @@
 // vertices, slivers and duplicates).
 
 #include <mvcl/model/GltfLoader.h>
+#include <mvcl/tracer/RayOffset.h>
 #include <mvcl/tracer/Tracer.h>
 
 #include "../../framework/src/tracer/TraversalIsa.h"
@@ -60,6 +61,50 @@ TEST_P(TracerModels, BvhMatchesBruteForce) {
             EXPECT_EQ(h.kind, bf.kind) << "ray " << i;
         }
         EXPECT_GT(hits, kRays / 10);
+    }
+}
+
+/// Shadow segments leaving surfaces towards a light, as a renderer casts them: any-hit starts
+/// deep in the tree next to the surface, with a full stack (the paths that test a pending node
+/// alongside the current one). anyHit must agree with closestHit on every segment, in both
+/// traversal variants.
+TEST_P(TracerModels, ShadowSegmentsAgreeWithClosestHit) {
+    const std::filesystem::path path =
+        std::filesystem::path(MVCL_TEST_DATA_DIR) / "models" / GetParam() / (GetParam() + ".glb");
+    const Scene scene = loadGltf(path);
+    for (const bool forceSse : {false, true}) {
+        SCOPED_TRACE(forceSse ? "SSE traversal" : "default traversal");
+        detail::forceSseTraversal(forceSse);
+        const Tracer tracer(scene);
+        detail::forceSseTraversal(false);
+        const Bounds3f b = scene.bounds();
+        const glm::vec3 c = b.center();
+        const float r = 0.5f * glm::length(b.extent());
+        const glm::vec3 lights[2] = {c + 2.f * r * glm::vec3(0.4f, 1.2f, 0.6f),
+                                     c + 0.1f * r * glm::vec3(-0.3f, 0.2f, 0.1f)};
+        std::mt19937 rng(5);
+        std::normal_distribution<float> n(0.f, 1.f);
+        int segments = 0, blocked = 0;
+        for (int i = 0; i < 3000; ++i) {
+            const glm::vec3 o = c + 2.f * r * glm::normalize(glm::vec3(n(rng), n(rng), n(rng)));
+            const Ray primary{o, glm::normalize(c + 0.3f * r * glm::vec3(n(rng), n(rng), n(rng)) - o)};
+            Hit h;
+            if (!tracer.closestHit(primary, {}, h)) continue;
+            const SurfaceInteraction si = tracer.interaction(primary, h);
+            const glm::vec3 light = lights[i % 2];
+            const glm::vec3 so = offsetRayOrigin(si.position, si.positionError, si.geometricNormal,
+                                                 light - si.position);
+            const Ray shadow{so, light - so};
+            RayQuery q;
+            q.tMax = 1.f - 1e-4f;
+            Hit sh;
+            const bool fh = tracer.closestHit(shadow, q, sh);
+            ASSERT_EQ(tracer.anyHit(shadow, q), fh) << "segment " << i;
+            ++segments;
+            blocked += fh;
+        }
+        EXPECT_GT(segments, 500);
+        EXPECT_GT(blocked, 0);
     }
 }
 

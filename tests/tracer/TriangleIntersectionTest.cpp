@@ -225,6 +225,15 @@ TEST(TriangleIntersection, FourWideKernelMatchesScalarBitwise) {
         detail::TriangleHit4 h4;
         const int lanes = 1 + iter % 15;
         const int bits = detail::watertightIntersect4(wray4, block, lanes, tMax, h4);
+        // The any-hit form (no barycentrics) hits the same lanes at the same t.
+        detail::TriangleHit4 t4;
+        const int tBits = detail::watertightIntersect4<false>(wray4, block, lanes, tMax, t4);
+        ASSERT_EQ(tBits, bits) << "iteration " << iter;
+        for (int lane = 0; lane < 4; ++lane) {
+            if ((bits >> lane) & 1) {
+                EXPECT_EQ(std::bit_cast<uint32_t>(t4.t[lane]), std::bit_cast<uint32_t>(h4.t[lane]));
+            }
+        }
         for (int lane = 0; lane < 4; ++lane) {
             TriangleHit h;
             const bool scalar = (lanes >> lane) & 1 &&

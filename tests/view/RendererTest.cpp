@@ -56,7 +56,7 @@ TEST(Renderer, ImageIsIdenticalForAnyThreadCount) {
 
 TEST(Renderer, CountsEveryRayTypeOnTheDefaultScene) {
     const RenderedScene r = renderBuiltin("cube-in-cube", 80, 60, 1, 0);
-    EXPECT_EQ(r.stats.rays.primary > 0 ? r.stats.pixels : 0, 80u * 60u);
+    EXPECT_EQ(r.stats.pixels, 80u * 60u);
     EXPECT_GE(r.stats.rays.primary, 80u * 60u);
     EXPECT_GT(r.stats.rays.shadow, 0u);
     EXPECT_GT(r.stats.rays.reflection, 0u);
@@ -122,9 +122,7 @@ TEST(Renderer, PolicyMapRevealsTheInnerCubeOnlyWhereAsked) {
     Framebuffer image;
     Renderer(tracer).render(Camera::fromDesc(scene.cameras.front()), map, settings, image);
 
-    // Find the pixel that looks at the cubes' centre: project by searching for the ray that hits
-    // the inner cube in the left half.
-    const Camera camera = Camera::fromDesc(scene.cameras.front());
+    // The default view looks at the cubes across the image's middle, so both halves show one.
     int reds = 0, blues = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -134,7 +132,6 @@ TEST(Renderer, PolicyMapRevealsTheInnerCubeOnlyWhereAsked) {
             if (x < w / 2) reds += red;
             else blues += blue;
         }
-    (void)camera;
     EXPECT_GT(reds, 50) << "the inner (red) cube shows through on the left";
     EXPECT_GT(blues, 50) << "the outer (blue) cube still covers the right";
 }

@@ -10,6 +10,10 @@
 #include <glm/vec3.hpp>
 
 #include <cmath>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <limits>
 
 namespace mvcl::detail {
@@ -49,10 +53,18 @@ struct RayContext {
     RayContext(const Ray &r, const RayQuery &q)
         : ray(r), tMin(q.tMin), tMax(q.tMax), layerMask(q.layerMask), query(&q),
           hasClips(q.clipCount > 0) {
+#if defined(__SSE2__)
+        // One divps instead of three divss (same correctly rounded quotients per lane).
+        alignas(16) float inv[4];
+        _mm_store_ps(inv, _mm_div_ps(_mm_set1_ps(1.f), _mm_setr_ps(r.direction.x, r.direction.y,
+                                                                  r.direction.z, 1.f)));
+        invDir = glm::vec3(inv[0], inv[1], inv[2]);
+#else
+        for (int k = 0; k < 3; ++k) invDir[k] = 1.f / r.direction[k];
+#endif
         for (int k = 0; k < 3; ++k) {
             // IEEE division keeps the sign of zero: 1/(−0) = −∞, so the slab order below is
             // right for ±0 components too.
-            invDir[k] = 1.f / r.direction[k];
             const bool negative = std::signbit(invDir[k]);
             nearIdx[k] = negative ? k + 3 : k;
             farIdx[k] = negative ? k : k + 3;

@@ -175,7 +175,7 @@ inline bool testLeaf(uint32_t leaf, const detail::PrimBlock *blocks, const detai
         // exactly; the t of a lane does not depend on the cap.
         const float tCap = AnyHit ? c.tMax : std::min(c.tMax, best.t);
         detail::TriangleHit4 th;
-        int hits = detail::watertightIntersect4(wray, block, lanes, tCap, th);
+        int hits = detail::watertightIntersect4<!AnyHit>(wray, block, lanes, tCap, th);
         while (hits) {
             const int lane = std::countr_zero(unsigned(hits));
             hits &= hits - 1;

@@ -44,6 +44,9 @@ struct WatertightRay4 {
 
 /// Tests the lanes set in `lanes` (bit i = lane i) against the ray; returns the bits of the lanes
 /// hit with their results in `hit`. tMax plays the same role as in watertightIntersect().
+/// Barycentrics = false leaves hit.b0..b2 of the vector lanes unwritten: any-hit queries only
+/// need t, which is the same arithmetic either way.
+template <bool Barycentrics = true>
 inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, int lanes, float tMax,
                                 TriangleHit4 &hit) {
     const WatertightRay &r = r4.ray;
@@ -130,9 +133,11 @@ inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, in
             hits = candidates & _mm_movemask_ps(accept);
             if (hits) {
                 _mm_store_ps(hit.t, t);
-                _mm_store_ps(hit.b0, _mm_mul_ps(e0, invDet));
-                _mm_store_ps(hit.b1, _mm_mul_ps(e1, invDet));
-                _mm_store_ps(hit.b2, _mm_mul_ps(e2, invDet));
+                if (Barycentrics) {
+                    _mm_store_ps(hit.b0, _mm_mul_ps(e0, invDet));
+                    _mm_store_ps(hit.b1, _mm_mul_ps(e1, invDet));
+                    _mm_store_ps(hit.b2, _mm_mul_ps(e2, invDet));
+                }
             }
         }
     }

@@ -125,8 +125,90 @@ inline int intersectNode(const WideNode &n, const NodeRay &r, float tHigh, float
 #endif
 }
 
+/// Any-hit traversal. Any hit ends the query and tHigh never shrinks, so the children are not
+/// ordered and the stack holds bare references: every pushed child already passed
+/// tNear <= tHigh, so popping needs no distance test either.
+inline bool occluded(const detail::WideBvh &wide, const RayContext &c, float tHigh, Hit &unused) {
+    const WideNode *nodes = wide.nodes.get();
+    const detail::PrimBlock *blocks = wide.blocks.get();
+    const detail::PrimInfo *info = wide.info.get();
+    const WatertightRay wray(c.ray);
+    const detail::WatertightRay4 wray4(wray);
+    const NodeRay nodeRay(c);
+    // Pairs are only taken while sp <= kStackSize - 2·kWidth, so above that mark the stack only
+    // grows by the one-node steps, a plain depth-first descent: at most 7 entries per level
+    // (kStackSize covers that for the whole depth) on top of the mark plus one pair's 16.
+    uint32_t stack[2 * kStackSize + kWidth];
+    int sp = 0;
+    uint32_t cur = wide.root;
+    for (;;) {
+        const bool pairable = sp > 0 && sp <= kStackSize - 2 * kWidth;
+        if (pairable && WideLeaf::isLeaf(cur) != WideLeaf::isLeaf(stack[sp - 1])) {
+            // A leaf and a node: the slab test of the node overlaps the triangle test.
+            uint32_t node = stack[--sp], leaf = cur;
+            if (WideLeaf::isLeaf(node)) std::swap(node, leaf);
+            alignas(32) float tNear[kWidth];
+            int bits = intersectNode(nodes[node], nodeRay, tHigh, tNear);
+            if (testLeaf<true>(leaf, blocks, info, c, wray4, unused)) return true;
+            if (bits) {
+                const uint32_t *child = nodes[node].child;
+                cur = child[std::countr_zero(unsigned(bits))];
+                bits &= bits - 1;
+                while (bits) {
+                    stack[sp++] = child[std::countr_zero(unsigned(bits))];
+                    bits &= bits - 1;
+                }
+                continue;
+            }
+        } else if (WideLeaf::isLeaf(cur)) {
+            if (testLeaf<true>(cur, blocks, info, c, wray4, unused)) return true;
+        } else if (pairable) {
+            // Two nodes at once. Traversal is bound by the latency of the chain node load →
+            // slab test → child reference → next node load, not by throughput; any-hit does not
+            // care about order, so the next pending node is tested alongside and the two
+            // chains overlap.
+            const uint32_t other = stack[--sp];
+            alignas(32) float tNear[kWidth], tNearOther[kWidth];
+            int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
+            int bitsOther = intersectNode(nodes[other], nodeRay, tHigh, tNearOther);
+            const uint32_t *child = nodes[other].child;
+            while (bitsOther) {
+                stack[sp++] = child[std::countr_zero(unsigned(bitsOther))];
+                bitsOther &= bitsOther - 1;
+            }
+            if (bits) {
+                // The first child goes straight on, not through a stack store and reload.
+                child = nodes[cur].child;
+                cur = child[std::countr_zero(unsigned(bits))];
+                bits &= bits - 1;
+                while (bits) {
+                    stack[sp++] = child[std::countr_zero(unsigned(bits))];
+                    bits &= bits - 1;
+                }
+                continue;
+            }
+        } else {
+            alignas(32) float tNear[kWidth];
+            int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
+            if (bits) {
+                const uint32_t *child = nodes[cur].child;
+                cur = child[std::countr_zero(unsigned(bits))];
+                bits &= bits - 1;
+                while (bits) {
+                    stack[sp++] = child[std::countr_zero(unsigned(bits))];
+                    bits &= bits - 1;
+                }
+                continue;
+            }
+        }
+        if (sp == 0) return false;
+        cur = stack[--sp];
+    }
+}
+
 /// Closest hit (AnyHit = false: updates `best`, returns whether anything was found) or any hit
-/// (returns true on the first accepted hit) over the wide BVH.
+/// (returns true on the first accepted hit; after the root box, handed to occluded()) over the
+/// wide BVH.
 template <bool AnyHit>
 bool traverse(const detail::WideBvh &wide, const RayContext &c, Hit &best) {
     if (wide.blockCount == 0) return false;
@@ -137,6 +219,7 @@ bool traverse(const detail::WideBvh &wide, const RayContext &c, Hit &best) {
     float tEntry;
     if (!(wide.rootMask & c.layerMask) || !intersectBox(wide.rootBounds, c, tHigh, tEntry))
         return false;
+    if (AnyHit) return occluded(wide, c, tHigh, best);
     // Only now: many rays miss the scene bounds, and the shear costs three divisions.
     const WatertightRay wray(c.ray);
     const detail::WatertightRay4 wray4(wray);
@@ -146,10 +229,25 @@ bool traverse(const detail::WideBvh &wide, const RayContext &c, Hit &best) {
         uint32_t ref;
         float t;
     };
-    Entry stack[kStackSize];
+    // Sized as in occluded(): pairs are only taken below the same mark.
+    Entry stack[2 * kStackSize + kWidth];
     int sp = 0;
     uint32_t cur = wide.root;
     bool found = false;
+    // Sorted insertion of the entered lanes of a node into the run that starts at `base`.
+    auto insert = [&](int base, int bits, const uint32_t *child, const float *tNear) {
+        while (bits) {
+            const int lane = std::countr_zero(unsigned(bits));
+            bits &= bits - 1;
+            const Entry e{child[lane], tNear[lane]};
+            int j = sp++;
+            while (j > base && stack[j - 1].t < e.t) {
+                stack[j] = stack[j - 1];
+                --j;
+            }
+            stack[j] = e;
+        }
+    };
     for (;;) {
         if (WideLeaf::isLeaf(cur)) {
             if (testLeaf<AnyHit>(cur, blocks, info, c, wray4, best)) {
@@ -157,47 +255,36 @@ bool traverse(const detail::WideBvh &wide, const RayContext &c, Hit &best) {
                 found = true;
                 tHigh = std::min(c.tMax, best.t) * detail::kTraversalSlackUp;
             }
+        } else if (sp > 0 && sp <= kStackSize - 2 * kWidth && !WideLeaf::isLeaf(stack[sp - 1].ref) &&
+                   stack[sp - 1].t <= tHigh) {
+            // The next-nearest pending node is tested alongside (see occluded(): the node chain
+            // is latency-bound). Both nodes' children go into one sorted run, so the visit order
+            // stays nearest-first; the hit found does not depend on the order anyway.
+            const uint32_t other = stack[--sp].ref;
+            alignas(32) float tNear[kWidth], tNearOther[kWidth];
+            const int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
+            const int bitsOther = intersectNode(nodes[other], nodeRay, tHigh, tNearOther);
+            const int base = sp;
+            insert(base, bitsOther, nodes[other].child, tNearOther);
+            insert(base, bits, nodes[cur].child, tNear);
+            if (sp > base) {
+                cur = stack[--sp].ref;
+                continue;
+            }
         } else {
             alignas(32) float tNear[kWidth];
             int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
             if (bits) {
                 const uint32_t *child = nodes[cur].child;
-                if (AnyHit) {
-                    // Any hit ends the query, so ordering the children buys little for the
-                    // rays that are blocked and costs every ray that is not.
-                    int lane = std::countr_zero(unsigned(bits));
-                    bits &= bits - 1;
-                    cur = child[lane];
-                    while (bits) {
-                        lane = std::countr_zero(unsigned(bits));
-                        bits &= bits - 1;
-                        stack[sp++] = {child[lane], tNear[lane]};
-                    }
-                    continue;
-                }
                 // One child (the common case deep in the tree) needs no stack at all. Otherwise
                 // the children go straight onto the stack, kept in descending t by insertion
                 // (stable, so equal t keep lane order), and the nearest is popped back: no
                 // scratch list to copy.
-                int lane = std::countr_zero(unsigned(bits));
-                bits &= bits - 1;
-                if (!bits) {
-                    cur = child[lane];
+                if (!(bits & (bits - 1))) {
+                    cur = child[std::countr_zero(unsigned(bits))];
                     continue;
                 }
-                const int base = sp;
-                stack[sp++] = {child[lane], tNear[lane]};
-                do {
-                    lane = std::countr_zero(unsigned(bits));
-                    bits &= bits - 1;
-                    const Entry e{child[lane], tNear[lane]};
-                    int j = sp++;
-                    while (j > base && stack[j - 1].t < e.t) {
-                        stack[j] = stack[j - 1];
-                        --j;
-                    }
-                    stack[j] = e;
-                } while (bits);
+                insert(sp, bits, child, tNear);
                 cur = stack[--sp].ref;
                 continue;
             }
