@@ -41,6 +41,11 @@ inline bool isValidQuery(const Ray &ray, const RayQuery &query) {
 struct RayContext {
     Ray ray;
     glm::vec3 invDir;
+    /// invDir · kBoxFarScale, for the far slabs only: Ize's widening folded into the reciprocal
+    /// instead of a multiply of every box's tFar, which sat on the latency-bound node chain.
+    /// Same rounding count as (fl((b − o)·invDir))·s — sub, division, two products — so the
+    /// 1 + 2γ(3) bound still covers it; an overflow to ±∞ (|d| below ~3e-39) only widens.
+    glm::vec3 invDirFar;
     int nearIdx[3]; ///< index into BvhNode::bounds of the slab the ray enters through, per axis
     int farIdx[3];
     float tMin;     ///< query lower bound (hits need t ≥ tMin and t > 0)
@@ -62,6 +67,7 @@ struct RayContext {
 #else
         for (int k = 0; k < 3; ++k) invDir[k] = 1.f / r.direction[k];
 #endif
+        invDirFar = invDir * kBoxFarScale;
         for (int k = 0; k < 3; ++k) {
             // IEEE division keeps the sign of zero: 1/(−0) = −∞, so the slab order below is
             // right for ±0 components too.

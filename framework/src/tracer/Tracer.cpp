@@ -72,24 +72,26 @@ uint8_t clampLayer(int layer) { return uint8_t(std::clamp(layer, 0, kMaxLayers -
 /// Robust slab test (Ize 2013). Slabs are taken in the ray's sign order, so a ±0 direction
 /// component gives ±∞ distances with the right sign; an origin exactly on a slab plane gives
 /// 0·∞ = NaN, which the comparisons below discard (the ray lies in the face: treat as inside).
+/// The far slabs use invDirFar, which carries the conservative widening (RayContext.h).
 inline bool intersectBox(const float *b, const RayContext &c, float tHigh, float &tEntry) {
     const float tx0 = (b[c.nearIdx[0]] - c.ray.origin.x) * c.invDir.x;
     const float ty0 = (b[c.nearIdx[1]] - c.ray.origin.y) * c.invDir.y;
     const float tz0 = (b[c.nearIdx[2]] - c.ray.origin.z) * c.invDir.z;
-    const float tx1 = (b[c.farIdx[0]] - c.ray.origin.x) * c.invDir.x;
-    const float ty1 = (b[c.farIdx[1]] - c.ray.origin.y) * c.invDir.y;
-    const float tz1 = (b[c.farIdx[2]] - c.ray.origin.z) * c.invDir.z;
+    const float tx1 = (b[c.farIdx[0]] - c.ray.origin.x) * c.invDirFar.x;
+    const float ty1 = (b[c.farIdx[1]] - c.ray.origin.y) * c.invDirFar.y;
+    const float tz1 = (b[c.farIdx[2]] - c.ray.origin.z) * c.invDirFar.z;
+    // The order of the SIMD node test (maxps(a, b) = a > b ? a : b); tHigh starts the far
+    // minimum, as there.
     float tNear = c.tLow;
     tNear = tx0 > tNear ? tx0 : tNear;
     tNear = ty0 > tNear ? ty0 : tNear;
     tNear = tz0 > tNear ? tz0 : tNear;
-    float tFar = detail::kInfinity;
+    float tFar = tHigh;
     tFar = tx1 < tFar ? tx1 : tFar;
     tFar = ty1 < tFar ? ty1 : tFar;
     tFar = tz1 < tFar ? tz1 : tFar;
-    tFar *= detail::kBoxFarScale;
     tEntry = tNear;
-    return tNear <= tFar && tNear <= tHigh;
+    return tNear <= tFar;
 }
 
 /// Offers a candidate to the closest-hit search: it wins if it precedes the best so far in the

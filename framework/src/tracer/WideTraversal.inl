@@ -22,22 +22,26 @@ struct NodeRay {
     int near[3], far[3];
     uint32_t layerMask;
 #if MVCL_TRAVERSAL_AVX2
-    __m256 ox, oy, oz, ix, iy, iz, tLow;
+    __m256 ox, oy, oz, ix, iy, iz, fx, fy, fz, tLow; ///< f: invDirFar
 
     explicit NodeRay(const RayContext &ctx)
         : c(ctx), ox(_mm256_set1_ps(ctx.ray.origin.x)), oy(_mm256_set1_ps(ctx.ray.origin.y)),
           oz(_mm256_set1_ps(ctx.ray.origin.z)), ix(_mm256_set1_ps(ctx.invDir.x)),
           iy(_mm256_set1_ps(ctx.invDir.y)), iz(_mm256_set1_ps(ctx.invDir.z)),
+          fx(_mm256_set1_ps(ctx.invDirFar.x)), fy(_mm256_set1_ps(ctx.invDirFar.y)),
+          fz(_mm256_set1_ps(ctx.invDirFar.z)),
           tLow(_mm256_set1_ps(ctx.tLow)) {
         copyIdx();
     }
 #elif defined(__SSE2__)
-    __m128 ox, oy, oz, ix, iy, iz, tLow;
+    __m128 ox, oy, oz, ix, iy, iz, fx, fy, fz, tLow; ///< f: invDirFar
 
     explicit NodeRay(const RayContext &ctx)
         : c(ctx), ox(_mm_set1_ps(ctx.ray.origin.x)), oy(_mm_set1_ps(ctx.ray.origin.y)),
           oz(_mm_set1_ps(ctx.ray.origin.z)), ix(_mm_set1_ps(ctx.invDir.x)),
           iy(_mm_set1_ps(ctx.invDir.y)), iz(_mm_set1_ps(ctx.invDir.z)),
+          fx(_mm_set1_ps(ctx.invDirFar.x)), fy(_mm_set1_ps(ctx.invDirFar.y)),
+          fz(_mm_set1_ps(ctx.invDirFar.z)),
           tLow(_mm_set1_ps(ctx.tLow)) {
         copyIdx();
     }
@@ -60,19 +64,19 @@ inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 
     const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[0]] + first), r.ox), r.ix);
     const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[1]] + first), r.oy), r.iy);
     const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[2]] + first), r.oz), r.iz);
-    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[0]] + first), r.ox), r.ix);
-    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[1]] + first), r.oy), r.iy);
-    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[2]] + first), r.oz), r.iz);
+    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[0]] + first), r.ox), r.fx);
+    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[1]] + first), r.oy), r.fy);
+    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[2]] + first), r.oz), r.fz);
     // maxps/minps return the second operand when either is NaN: the running value survives a
     // 0·∞ lane exactly like the scalar comparisons in intersectBox.
     __m128 tNear = _mm_max_ps(tx0, r.tLow);
     tNear = _mm_max_ps(ty0, tNear);
     tNear = _mm_max_ps(tz0, tNear);
-    __m128 tFar = _mm_min_ps(tx1, _mm_set1_ps(detail::kInfinity));
+    // tHigh starts the far minimum (it is never NaN, as ∞ was): one compare instead of two.
+    __m128 tFar = _mm_min_ps(tx1, tHigh);
     tFar = _mm_min_ps(ty1, tFar);
     tFar = _mm_min_ps(tz1, tFar);
-    tFar = _mm_mul_ps(tFar, _mm_set1_ps(detail::kBoxFarScale));
-    const __m128 ok = _mm_and_ps(_mm_cmple_ps(tNear, tFar), _mm_cmple_ps(tNear, tHigh));
+    const __m128 ok = _mm_cmple_ps(tNear, tFar);
     _mm_storeu_ps(tNear4, tNear);
     const __m128i lm =
         _mm_and_si128(_mm_load_si128(reinterpret_cast<const __m128i *>(n.layerMask + first)),
@@ -82,26 +86,26 @@ inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 
 }
 #endif
 
-/// Slab test of the children of a node (the arithmetic of intersectBox, lane by lane). Returns
+/// Slab test of the children of a node (the arithmetic of intersectBox, lane by lane; the far slabs
+/// carry the widening in invDirFar, see RayContext.h). Returns
 /// the bit mask of the lanes entered and their entry distances (tOut is 32-byte aligned).
 inline int intersectNode(const WideNode &n, const NodeRay &r, float tHigh, float tOut[kWidth]) {
 #if MVCL_TRAVERSAL_AVX2
     const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[0]]), r.ox), r.ix);
     const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[1]]), r.oy), r.iy);
     const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[2]]), r.oz), r.iz);
-    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[0]]), r.ox), r.ix);
-    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[1]]), r.oy), r.iy);
-    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[2]]), r.oz), r.iz);
+    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[0]]), r.ox), r.fx);
+    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[1]]), r.oy), r.fy);
+    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[2]]), r.oz), r.fz);
     // vmaxps/vminps have the NaN rule of maxps/minps (second operand), as in the SSE path.
     __m256 tNear = _mm256_max_ps(tx0, r.tLow);
     tNear = _mm256_max_ps(ty0, tNear);
     tNear = _mm256_max_ps(tz0, tNear);
-    __m256 tFar = _mm256_min_ps(tx1, _mm256_set1_ps(detail::kInfinity));
+    // tHigh starts the far minimum (see intersectHalf).
+    __m256 tFar = _mm256_min_ps(tx1, _mm256_set1_ps(tHigh));
     tFar = _mm256_min_ps(ty1, tFar);
     tFar = _mm256_min_ps(tz1, tFar);
-    tFar = _mm256_mul_ps(tFar, _mm256_set1_ps(detail::kBoxFarScale));
-    const __m256 ok = _mm256_and_ps(_mm256_cmp_ps(tNear, tFar, _CMP_LE_OQ),
-                                    _mm256_cmp_ps(tNear, _mm256_set1_ps(tHigh), _CMP_LE_OQ));
+    const __m256 ok = _mm256_cmp_ps(tNear, tFar, _CMP_LE_OQ);
     _mm256_store_ps(tOut, tNear);
     const __m256i lm =
         _mm256_and_si256(_mm256_load_si256(reinterpret_cast<const __m256i *>(n.layerMask)),
@@ -282,6 +286,18 @@ bool traverse(const detail::WideBvh &wide, const RayContext &c, Hit &best) {
                 // scratch list to copy.
                 if (!(bits & (bits - 1))) {
                     cur = child[std::countr_zero(unsigned(bits))];
+                    continue;
+                }
+                const int rest = bits & (bits - 1);
+                if (!(rest & (rest - 1))) {
+                    // Two children (the next most common case): the nearer goes on from a
+                    // register, not through a stack store and reload. Same order as insert():
+                    // on equal t the higher lane comes first.
+                    const int l0 = std::countr_zero(unsigned(bits));
+                    const int l1 = std::countr_zero(unsigned(rest));
+                    const bool first0 = tNear[l0] < tNear[l1];
+                    stack[sp++] = first0 ? Entry{child[l1], tNear[l1]} : Entry{child[l0], tNear[l0]};
+                    cur = child[first0 ? l0 : l1];
                     continue;
                 }
                 insert(sp, bits, child, tNear);
