@@ -116,6 +116,17 @@ inline Hit triangleCandidate(const detail::PrimInfo &info, float t, float b1, fl
     return cand;
 }
 
+/// A sphere or plane hit: one primitive per geometry, no barycentrics.
+inline Hit analyticCandidate(GeometryKind kind, float t, uint8_t layer, uint32_t geometry) {
+    Hit cand;
+    cand.t = t;
+    cand.kind = kind;
+    cand.layer = layer;
+    cand.geometry = geometry;
+    cand.primitive = 0;
+    return cand;
+}
+
 /// Tests the sphere in lane `lane` of a block. For closest hit (AnyHit = false) updates `best`
 /// and returns true if it improved; for any hit returns true on the first accepted hit.
 template <bool AnyHit>
@@ -127,12 +138,7 @@ inline bool testSphere(const detail::PrimBlock &block, int lane, const detail::P
     for (int i = 0; i < n; ++i) {
         const float t = float(roots[i]);
         if (!c.acceptsT(t)) continue;
-        Hit cand;
-        cand.t = t;
-        cand.kind = GeometryKind::Sphere;
-        cand.layer = info.layer;
-        cand.geometry = info.geometry;
-        cand.primitive = 0;
+        const Hit cand = analyticCandidate(GeometryKind::Sphere, t, info.layer, info.geometry);
         if (AnyHit) {
             if (c.acceptsPoint(t)) return true;
             continue;
@@ -270,12 +276,7 @@ bool Tracer::Private::testPlanes(const RayContext &c, Hit &best) const {
         if (!((c.layerMask >> pl.layer) & 1u)) continue;
         const float t = float(detail::planeT(c.ray.origin, c.ray.direction, pl.normal, pl.offset));
         if (!c.acceptsT(t)) continue;
-        Hit cand;
-        cand.t = t;
-        cand.kind = GeometryKind::Plane;
-        cand.layer = pl.layer;
-        cand.geometry = pl.geometry;
-        cand.primitive = 0;
+        const Hit cand = analyticCandidate(GeometryKind::Plane, t, pl.layer, pl.geometry);
         if (AnyHit) {
             if (c.acceptsPoint(t)) return true;
             continue;
