@@ -115,6 +115,12 @@ struct WatertightCase {
     bool edgeMidpoints;
 };
 
+/// Readable test names in ctest instead of a byte dump of the parameter.
+[[maybe_unused]] void PrintTo(const WatertightCase &wc, std::ostream *os) {
+    *os << "sphere at (" << wc.center.x << ", " << wc.center.y << ", " << wc.center.z << "), rays at "
+        << (wc.edgeMidpoints ? "edge midpoints" : "vertices");
+}
+
 class TriangleWatertight : public ::testing::TestWithParam<WatertightCase> {};
 
 TEST_P(TriangleWatertight, NoLeaksAtSharedEdgesAndVertices) {
