@@ -173,8 +173,8 @@ RTCScene buildEmbree(RTCDevice device, const mvcl::Scene &scene) {
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         const mvcl::TriangleMesh &mesh = scene.meshes[m];
         RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        // Shared buffers: Embree reads our arrays directly (it needs 16 bytes of padding after
-        // the last vertex, which a std::vector<vec3> does not guarantee, so copy the vertices).
+        // Copied into Embree-owned buffers: Embree needs 16 bytes of padding after the last
+        // vertex, which a std::vector<vec3> does not guarantee.
         auto *v = static_cast<float *>(rtcSetNewGeometryBuffer(
             g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
             mesh.positions.size()));

@@ -13,6 +13,7 @@
 
 #include <bit>
 #include <filesystem>
+#include <memory>
 #include <random>
 #include <string>
 
@@ -21,16 +22,25 @@ namespace {
 
 class TracerModels : public ::testing::TestWithParam<std::string> {};
 
+Scene loadModel(const std::string &name) {
+    return loadGltf(std::filesystem::path(MVCL_TEST_DATA_DIR) / "models" / name / (name + ".glb"));
+}
+
+/// A tracer on the default traversal (AVX2 where available) or forced onto the SSE baseline.
+std::unique_ptr<Tracer> buildTracer(const Scene &scene, bool forceSse) {
+    detail::forceSseTraversal(forceSse);
+    auto tracer = std::make_unique<Tracer>(scene);
+    detail::forceSseTraversal(false);
+    return tracer;
+}
+
 TEST_P(TracerModels, BvhMatchesBruteForce) {
-    const std::filesystem::path path =
-        std::filesystem::path(MVCL_TEST_DATA_DIR) / "models" / GetParam() / (GetParam() + ".glb");
-    const Scene scene = loadGltf(path);
+    const Scene scene = loadModel(GetParam());
     // Both traversal variants (AVX2 where available, and the SSE baseline) against the oracle.
     for (const bool forceSse : {false, true}) {
         SCOPED_TRACE(forceSse ? "SSE traversal" : "default traversal");
-        detail::forceSseTraversal(forceSse);
-        const Tracer tracer(scene);
-        detail::forceSseTraversal(false);
+        const auto owned = buildTracer(scene, forceSse);
+        const Tracer &tracer = *owned;
         ASSERT_GT(tracer.buildStats().triangles, 0u);
         const Bounds3f b = scene.bounds();
         const glm::vec3 c = b.center();
@@ -69,14 +79,11 @@ TEST_P(TracerModels, BvhMatchesBruteForce) {
 /// alongside the current one). anyHit must agree with closestHit on every segment, in both
 /// traversal variants.
 TEST_P(TracerModels, ShadowSegmentsAgreeWithClosestHit) {
-    const std::filesystem::path path =
-        std::filesystem::path(MVCL_TEST_DATA_DIR) / "models" / GetParam() / (GetParam() + ".glb");
-    const Scene scene = loadGltf(path);
+    const Scene scene = loadModel(GetParam());
     for (const bool forceSse : {false, true}) {
         SCOPED_TRACE(forceSse ? "SSE traversal" : "default traversal");
-        detail::forceSseTraversal(forceSse);
-        const Tracer tracer(scene);
-        detail::forceSseTraversal(false);
+        const auto owned = buildTracer(scene, forceSse);
+        const Tracer &tracer = *owned;
         const Bounds3f b = scene.bounds();
         const glm::vec3 c = b.center();
         const float r = 0.5f * glm::length(b.extent());

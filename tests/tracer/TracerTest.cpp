@@ -149,28 +149,35 @@ TEST(Tracer, BuildStatsLeaveOutDegenerateGeometry) {
     EXPECT_GE(st.buildMilliseconds, 0.0);
 }
 
+/// Random rays (every other one with a random query) through closestHit, closestHitBruteForce and
+/// anyHit: the BVH answer must equal the oracle bitwise and respect the query. Returns the hits.
+int compareWithBruteForce(const Tracer &tracer, std::mt19937 &rng, int rays, const std::string &what) {
+    int hits = 0;
+    for (int i = 0; i < rays; ++i) {
+        const Ray ray = randomRay(rng);
+        const RayQuery q = i % 2 ? randomQuery(rng) : RayQuery{};
+        const std::string label = what + " ray " + std::to_string(i);
+        Hit a, b;
+        const bool fa = tracer.closestHit(ray, q, a);
+        const bool fb = tracer.closestHitBruteForce(ray, q, b);
+        expectSameHit(fa, a, fb, b, label);
+        EXPECT_EQ(tracer.anyHit(ray, q), fa) << label;
+        hits += fa;
+        if (fa) {
+            EXPECT_TRUE(q.acceptsPoint(ray.at(a.t))) << label;
+            EXPECT_TRUE((q.layerMask >> a.layer) & 1u) << label;
+            EXPECT_GE(a.t, q.tMin) << label;
+            EXPECT_LE(a.t, q.tMax) << label;
+        }
+    }
+    return hits;
+}
+
 TEST(Tracer, BvhMatchesBruteForceOnSoup) {
     const Scene scene = makeSoup(4000, 2);
     const Tracer tracer(scene);
     std::mt19937 rng(3);
-    int hits = 0;
-    for (int i = 0; i < 4000; ++i) {
-        const Ray ray = randomRay(rng);
-        const RayQuery q = i % 2 ? randomQuery(rng) : RayQuery{};
-        Hit a, b;
-        const bool fa = tracer.closestHit(ray, q, a);
-        const bool fb = tracer.closestHitBruteForce(ray, q, b);
-        expectSameHit(fa, a, fb, b, "ray " + std::to_string(i));
-        EXPECT_EQ(tracer.anyHit(ray, q), fa) << "ray " << i;
-        hits += fa;
-        if (fa) {
-            EXPECT_TRUE(q.acceptsPoint(ray.at(a.t)));
-            EXPECT_TRUE((q.layerMask >> a.layer) & 1u);
-            EXPECT_GE(a.t, q.tMin);
-            EXPECT_LE(a.t, q.tMax);
-        }
-    }
-    EXPECT_GT(hits, 1000);
+    EXPECT_GT(compareWithBruteForce(tracer, rng, 4000, "soup"), 1000);
 }
 
 /// Leaves of one primitive and leaves of up to 15 (four PrimBlocks, partly filled, with spheres
@@ -182,18 +189,7 @@ TEST(Tracer, BvhMatchesBruteForceForAnyLeafSize) {
         settings.maxLeafSize = leafSize;
         const Tracer tracer(scene, settings);
         std::mt19937 rng(13);
-        int hits = 0;
-        for (int i = 0; i < 2000; ++i) {
-            const Ray ray = randomRay(rng);
-            const RayQuery q = i % 2 ? randomQuery(rng) : RayQuery{};
-            Hit a, b;
-            const bool fa = tracer.closestHit(ray, q, a);
-            const bool fb = tracer.closestHitBruteForce(ray, q, b);
-            expectSameHit(fa, a, fb, b, "leaf size " + std::to_string(leafSize) + " ray " + std::to_string(i));
-            EXPECT_EQ(tracer.anyHit(ray, q), fa) << "leaf size " << leafSize << " ray " << i;
-            hits += fa;
-        }
-        EXPECT_GT(hits, 500);
+        EXPECT_GT(compareWithBruteForce(tracer, rng, 2000, "leaf size " + std::to_string(leafSize)), 500);
     }
 }
 
