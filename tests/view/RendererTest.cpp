@@ -110,8 +110,8 @@ TEST(Renderer, PolicyMapRevealsTheInnerCubeOnlyWhereAsked) {
     const Tracer tracer(scene);
     const int w = 120, h = 90;
     PolicyMap map(w, h);
-    RayPolicy inner;
-    inner.query(RayType::Primary).layerMask = layerBit(1);
+    PixelPolicy inner;
+    inner.ray.query(RayType::Primary).layerMask = layerBit(1);
     const uint16_t innerId = map.addPolicy(inner);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w / 2; ++x) map.setPixel(x, y, innerId);

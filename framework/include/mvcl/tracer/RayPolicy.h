@@ -16,6 +16,10 @@ namespace mvcl {
 enum class RayType : uint8_t { Primary = 0, Shadow = 1, Reflection = 2, Refraction = 3 };
 inline constexpr int kRayTypeCount = 4;
 
+/// Ray-type masks: which ray types a lens (or a constraint) applies to.
+constexpr uint8_t rayTypeBit(RayType type) { return uint8_t(1u << unsigned(type)); }
+inline constexpr uint8_t kAllRayTypes = 0x0f;
+
 /// How hits are lit.
 struct ShadingPolicy {
     bool shadows = true;      ///< trace shadow rays at all

@@ -3,9 +3,9 @@
 /// Tile-parallel renderer over all cores. Each pixel's samples depend only on (x, y, seed), and a
 /// pixel is summed in a fixed order, so the image is identical for any thread count.
 
+#include <mvcl/lens/PolicyMap.h>
 #include <mvcl/view/Camera.h>
 #include <mvcl/view/Framebuffer.h>
-#include <mvcl/view/PolicyMap.h>
 #include <mvcl/view/RenderSettings.h>
 #include <mvcl/view/RenderStats.h>
 
@@ -23,7 +23,9 @@ public:
     explicit Renderer(const Tracer &tracer);
 
     /// Renders into `target` (resized to settings.width × settings.height). `policies` must have
-    /// the same size. Thread-safe with respect to other renders of the same tracer.
+    /// the same size; a pixel blending several policies (a feathered lens edge) renders each
+    /// and blends the radiance by weight. Thread-safe with respect to other renders of the
+    /// same tracer.
     RenderStats render(const Camera &camera, const PolicyMap &policies,
                        const RenderSettings &settings, Framebuffer &target,
                        const ProgressCallback &progress = {}) const;

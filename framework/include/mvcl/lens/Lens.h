@@ -1,0 +1,88 @@
+#pragma once
+/// \file Lens.h
+/// The lens plugin interface. A lens is a region on the screen, a policy contribution and
+/// properties. Setters stage; commit() validates and publishes an immutable snapshot; the lens
+/// stack and the renderer only ever read committed snapshots, so a UI thread may edit a lens
+/// while a frame renders.
+///
+/// A plugin derives from Lens, passes its static LensInfo to the constructor and implements
+/// contribute(). Every lens also has the common property "rays" (which ray types it acts on;
+/// its default comes from LensInfo::defaultRayTypes).
+
+#include <mvcl/lens/LensContribution.h>
+#include <mvcl/lens/LensInfo.h>
+#include <mvcl/lens/LensRegion.h>
+#include <mvcl/lens/PropertyValues.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mvcl {
+
+/// What the renderer sees of a lens: immutable, shared, replaced as a whole on commit().
+struct LensSnapshot {
+    uint64_t version = 0; ///< 0 before the first commit; +1 per commit
+    bool enabled = false;
+    LensRegion region;
+    /// Already restricted to the lens's "rays".
+    LensContribution contribution;
+};
+
+class LensPrivate;
+
+class Lens {
+public:
+    /// `info` is copied. The lens starts on its defaults, uncommitted (snapshot disabled).
+    explicit Lens(const LensInfo &info);
+    virtual ~Lens();
+    Lens(const Lens &) = delete;
+    Lens &operator=(const Lens &) = delete;
+
+    const LensInfo &info() const;
+    const std::string &typeName() const;
+    /// The declared parameters plus the common "rays".
+    const PropertyTable &properties() const;
+
+    /// A user-facing label for stats and UIs; defaults to the type name.
+    const std::string &label() const;
+    void setLabel(std::string label);
+
+    // --- staged state: takes effect on commit() ---
+    bool isEnabled() const;
+    void setEnabled(bool enabled);
+    const LensRegion &region() const;
+    void setRegion(const LensRegion &region);
+    /// Staged value of a declared property; throws mvcl::Error naming the lens for unknown keys.
+    PropertyValue property(std::string_view name) const;
+    /// Stages a value; throws mvcl::Error for unknown keys, a wrong type or out-of-range values.
+    void setProperty(std::string_view name, const PropertyValue &value);
+    /// Parses text with the property's declaration (files, command line).
+    void setPropertyText(std::string_view name, std::string_view text);
+    /// Every staged property back to its declared default.
+    void resetProperties();
+    bool hasUncommittedChanges() const;
+
+    /// Validates the staged state, builds the contribution and publishes a new snapshot.
+    /// On error throws mvcl::Error and keeps the previous snapshot.
+    void commit();
+    /// The last committed state; never null.
+    std::shared_ptr<const LensSnapshot> snapshot() const;
+    /// Committed property values in table order (for files and round trips).
+    std::vector<PropertyValue> committedValues() const;
+    /// Declared parameters the last commit's contribute() did not read (a plugin bug).
+    std::vector<std::string> unreadProperties() const;
+
+protected:
+    /// Builds the lens's contribution from committed values. Called by commit() only, on the
+    /// committing thread; must not depend on anything but its arguments.
+    virtual LensContribution contribute(const PropertyValues &properties,
+                                        const LensRegion &region) const = 0;
+
+private:
+    std::unique_ptr<LensPrivate> d;
+};
+
+} // namespace mvcl

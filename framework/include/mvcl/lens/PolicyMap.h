@@ -1,0 +1,75 @@
+#pragma once
+/// \file PolicyMap.h
+/// Per-pixel policies as data: a small table of distinct PixelPolicy entries (one per overlap
+/// set; entry 0 is the base) and, per pixel, a mix of entries with weights. Inside lenses and
+/// outside them a pixel has one term of weight 1; on a feathered edge it blends the policies
+/// with and without the lens, and the renderer blends their radiance with those weights.
+
+#include <mvcl/lens/PixelPolicy.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace mvcl {
+
+struct PolicyTerm {
+    uint16_t policy = 0;
+    float weight = 1.f;
+};
+
+class PolicyMap {
+public:
+    /// Every pixel starts on `base` (entry 0).
+    explicit PolicyMap(int width, int height, const PixelPolicy &base = {});
+    PolicyMap(int width, int height, const RayPolicy &base);
+
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+
+    /// Adds a policy and returns its index; throws mvcl::Error past 65535 entries.
+    uint16_t addPolicy(const PixelPolicy &policy);
+    const PixelPolicy &policy(uint16_t index) const { return m_policies[index]; }
+    PixelPolicy &policy(uint16_t index) { return m_policies[index]; }
+    const std::vector<PixelPolicy> &policies() const { return m_policies; }
+
+    /// The pixel uses one policy with weight 1.
+    void setPixel(int x, int y, uint16_t policy) {
+        m_mixOfPixel[offset(x, y)] = m_singleMixOfPolicy[policy];
+    }
+    /// The pixel blends several policies; weights (> 0) are normalised to sum to 1. Terms with
+    /// weight ≤ 0 are dropped; a single remaining term is the same as setPixel.
+    void setPixelBlend(int x, int y, std::span<const PolicyTerm> terms);
+
+    /// The pixel's terms (at least one).
+    std::span<const PolicyTerm> terms(int x, int y) const {
+        const Mix &mix = m_mixes[m_mixOfPixel[offset(x, y)]];
+        return {m_terms.data() + mix.first, mix.count};
+    }
+    /// The policy with the largest weight at the pixel.
+    const PixelPolicy &dominantPolicy(int x, int y) const;
+    /// Index of the pixel's mix; pixels with equal indices render with the same policies.
+    uint32_t mixIndex(int x, int y) const { return m_mixOfPixel[offset(x, y)]; }
+    /// Number of pixels that blend two or more policies.
+    std::size_t blendedPixelCount() const;
+
+private:
+    struct Mix {
+        uint32_t first;
+        uint32_t count;
+    };
+    std::size_t offset(int x, int y) const {
+        return std::size_t(y) * std::size_t(m_width) + std::size_t(x);
+    }
+
+    int m_width;
+    int m_height;
+    std::vector<PixelPolicy> m_policies;
+    std::vector<PolicyTerm> m_terms;
+    std::vector<Mix> m_mixes;                  // single-policy mixes and blends, interleaved
+    std::vector<uint32_t> m_singleMixOfPolicy; // policy index → its weight-1 mix
+    std::vector<uint32_t> m_mixOfPixel;
+};
+
+} // namespace mvcl

@@ -1,0 +1,51 @@
+#pragma once
+/// \file PropertyDecl.h
+/// A lens parameter declared once — name, type, default, range, unit, doc — and used for lens
+/// files, the command line, generated UI, the docs and the conformance tests (Mitsuba/OSPRay
+/// style). A plugin lists its declarations in a PropertyTable at the top of its one source file.
+
+#include <mvcl/lens/PropertyValue.h>
+
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mvcl {
+
+struct PropertyDecl {
+    std::string name;  ///< lowerCamelCase key used in files and on the command line
+    PropertyType type = PropertyType::Bool;
+    PropertyValue defaultValue;
+    double minimum = -std::numeric_limits<double>::infinity(); ///< Int/Real/Color components
+    double maximum = std::numeric_limits<double>::infinity();
+    std::string unit;  ///< e.g. "scene units", "px"; empty if unitless
+    std::string doc;   ///< one sentence for docs, tooltips and --help
+    std::vector<std::string> choices; ///< Choice only
+
+    static PropertyDecl boolean(std::string name, bool defaultValue, std::string doc);
+    static PropertyDecl integer(std::string name, int defaultValue, int minimum, int maximum,
+                                std::string unit, std::string doc);
+    static PropertyDecl real(std::string name, double defaultValue, double minimum,
+                             double maximum, std::string unit, std::string doc);
+    /// Components range over [0, ∞) unless narrowed.
+    static PropertyDecl color(std::string name, const glm::vec3 &defaultValue, std::string doc);
+    static PropertyDecl choice(std::string name, std::string defaultValue,
+                               std::vector<std::string> choices, std::string doc);
+    static PropertyDecl layers(std::string name, uint32_t defaultMask, std::string doc);
+    static PropertyDecl rayTypes(std::string name, uint8_t defaultMask, std::string doc);
+
+    /// Parses `text` into a value of this type and checks it; throws mvcl::Error(name, problem).
+    PropertyValue parse(std::string_view text) const;
+    /// Checks type, finiteness, range and choices; throws mvcl::Error(name, problem).
+    void validate(const PropertyValue &value) const;
+    /// "[min, max] unit" / "one of a|b|c" — for docs and --help.
+    std::string rangeText() const;
+};
+
+using PropertyTable = std::vector<PropertyDecl>;
+
+/// The declaration named `name` in `table`, or nullptr.
+const PropertyDecl *findProperty(const PropertyTable &table, std::string_view name);
+
+} // namespace mvcl

@@ -1,0 +1,70 @@
+#pragma once
+/// \file PropertyValue.h
+/// One typed value of a lens property. Every type has a canonical text form (toString) that
+/// PropertyDecl::parse reads back, so files, the command line and round-trip tests share it.
+
+#include <mvcl/tracer/RayPolicy.h>
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace mvcl {
+
+enum class PropertyType : uint8_t {
+    Bool,       ///< text: true | false
+    Int,        ///< text: decimal integer
+    Real,       ///< text: decimal number (stored as double)
+    Color,      ///< linear RGB; text: "r,g,b" (or "[r,g,b]")
+    Choice,     ///< one of the declared choices; text: the choice
+    LayerSet,   ///< layer mask; text: "all" | "none" | "0,2,5-7" | "2-" (layer 2 inward)
+    RayTypeSet, ///< ray-type mask; text: "all" | "none" | "primary,shadow,reflection,refraction"
+};
+
+const char *propertyTypeName(PropertyType type);
+
+class PropertyValue {
+public:
+    PropertyValue() = default; ///< Bool false
+
+    static PropertyValue boolean(bool value);
+    static PropertyValue integer(int value);
+    static PropertyValue real(double value);
+    static PropertyValue color(const glm::vec3 &value);
+    static PropertyValue choice(std::string value);
+    static PropertyValue layerSet(uint32_t mask);
+    static PropertyValue rayTypeSet(uint8_t mask);
+
+    PropertyType type() const { return m_type; }
+
+    /// Typed access; each throws mvcl::Error if the value holds another type.
+    bool toBool() const;
+    int toInt() const;
+    double toReal() const;
+    glm::vec3 toColor() const;
+    const std::string &toChoice() const;
+    uint32_t toLayerSet() const;
+    uint8_t toRayTypeSet() const;
+
+    /// Canonical text form; PropertyDecl::parse(toString()) gives back an equal value.
+    std::string toString() const;
+
+    bool operator==(const PropertyValue &other) const = default;
+
+private:
+    PropertyType m_type = PropertyType::Bool;
+    double m_number = 0.0;   // Bool, Int, Real
+    glm::vec3 m_color{0.f};  // Color
+    std::string m_text;      // Choice
+    uint32_t m_bits = 0;     // LayerSet, RayTypeSet
+};
+
+/// Text helpers shared by the parser and by tools that print masks.
+std::string layerSetToString(uint32_t mask);
+/// Throws mvcl::Error("", problem) on malformed text.
+uint32_t parseLayerSet(const std::string &text);
+std::string rayTypeSetToString(uint8_t mask);
+uint8_t parseRayTypeSet(const std::string &text);
+
+} // namespace mvcl

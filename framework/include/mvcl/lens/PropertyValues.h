@@ -1,0 +1,39 @@
+#pragma once
+/// \file PropertyValues.h
+/// The committed values a lens builds its contribution from. Reading is by name and typed;
+/// it remembers which names were read so the conformance suite can report parameters a lens
+/// declares but never uses (Mitsuba's "unreferenced property" check).
+
+#include <mvcl/lens/PropertyDecl.h>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mvcl {
+
+class PropertyValues {
+public:
+    /// `values[i]` belongs to `table[i]`; both must outlive this object.
+    PropertyValues(const PropertyTable &table, const std::vector<PropertyValue> &values);
+
+    /// Typed reads; each throws mvcl::Error if `name` is not declared or has another type.
+    bool boolean(std::string_view name) const;
+    int integer(std::string_view name) const;
+    double real(std::string_view name) const;
+    glm::vec3 color(std::string_view name) const;
+    const std::string &choice(std::string_view name) const;
+    uint32_t layers(std::string_view name) const;
+    uint8_t rayTypes(std::string_view name) const;
+    const PropertyValue &value(std::string_view name) const;
+
+    /// Declared names that no read has touched yet.
+    std::vector<std::string> unreadNames() const;
+
+private:
+    const PropertyTable &m_table;
+    const std::vector<PropertyValue> &m_values;
+    mutable std::vector<bool> m_read;
+};
+
+} // namespace mvcl

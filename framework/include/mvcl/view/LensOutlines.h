@@ -1,0 +1,13 @@
+#pragma once
+/// \file LensOutlines.h
+/// The "outline" join: after rendering, each enabled lens with an outline width draws its
+/// boundary over the image, bottom → top, anti-aliased by distance.
+
+namespace mvcl {
+
+class LensStack;
+class Framebuffer;
+
+void drawLensOutlines(const LensStack &stack, Framebuffer &image);
+
+} // namespace mvcl

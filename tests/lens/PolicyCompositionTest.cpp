@@ -1,0 +1,180 @@
+// The composition rules of BRIEF §3, one rule per test, on random data.
+#include <mvcl/lens/PolicyComposition.h>
+
+#include <mvcl/core/Error.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+using namespace mvcl;
+
+namespace {
+
+ClipVolume randomClip(std::mt19937 &rng) {
+    // Drawn from a small pool so that equal volumes occur and idempotence is exercised.
+    std::uniform_int_distribution<int> pick(0, 5);
+    const int k = pick(rng);
+    ClipVolume c;
+    c.shape = ClipVolume::Shape(k % 3);
+    c.keep = k < 3 ? ClipVolume::Keep::Outside : ClipVolume::Keep::Inside;
+    c.a = glm::vec3(float(k), 0.f, -float(k));
+    c.b = c.a + glm::vec3(1.f);
+    c.radius = 0.5f + float(k);
+    return c;
+}
+
+RayQuery randomQuery(std::mt19937 &rng) {
+    std::uniform_real_distribution<float> t(0.f, 10.f);
+    RayQuery q;
+    q.layerMask = uint32_t(rng());
+    q.tMin = t(rng);
+    q.tMax = rng() % 4 == 0 ? q.tMax : q.tMin + t(rng);
+    const int clips = int(rng() % 3);
+    for (int i = 0; i < clips; ++i) q = intersectQueries(q, [&] {
+        RayQuery c;
+        c.clips[0] = randomClip(rng);
+        c.clipCount = 1;
+        return c;
+    }());
+    return q;
+}
+
+/// Equal constraints: same mask and range, and the same set of clip volumes in any order.
+void expectSameConstraint(const RayQuery &a, const RayQuery &b) {
+    EXPECT_EQ(a.layerMask, b.layerMask);
+    EXPECT_EQ(a.tMin, b.tMin);
+    EXPECT_EQ(a.tMax, b.tMax);
+    ASSERT_EQ(a.clipCount, b.clipCount);
+    for (int i = 0; i < a.clipCount; ++i) {
+        const ClipVolume &c = a.clips[size_t(i)];
+        const auto end = b.clips.begin() + b.clipCount;
+        EXPECT_NE(std::find_if(b.clips.begin(), end, [&](const ClipVolume &d) {
+                      return d.shape == c.shape && d.keep == c.keep && d.a == c.a && d.b == c.b &&
+                             d.radius == c.radius;
+                  }),
+                  end);
+    }
+}
+
+ColorPolicy randomColor(std::mt19937 &rng) {
+    std::uniform_real_distribution<float> v(-1.f, 1.f);
+    ColorPolicy c;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) c.matrix[i][j] = v(rng);
+        c.offset[i] = v(rng);
+    }
+    return c;
+}
+
+void expectNear(const ColorPolicy &a, const ColorPolicy &b, float tolerance) {
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) EXPECT_NEAR(a.matrix[i][j], b.matrix[i][j], tolerance);
+        EXPECT_NEAR(a.offset[i], b.offset[i], tolerance);
+    }
+}
+
+} // namespace
+
+TEST(PolicyComposition, TheEmptyConstraintIsTheIdentity) {
+    std::mt19937 rng(1);
+    for (int i = 0; i < 200; ++i) {
+        const RayQuery q = randomQuery(rng);
+        expectSameConstraint(intersectQueries(q, RayQuery{}), q);
+        expectSameConstraint(intersectQueries(RayQuery{}, q), q);
+    }
+}
+
+TEST(PolicyComposition, VisibilityIsCommutativeAssociativeAndIdempotent) {
+    std::mt19937 rng(2);
+    for (int i = 0; i < 500; ++i) {
+        const RayQuery a = randomQuery(rng), b = randomQuery(rng), c = randomQuery(rng);
+        expectSameConstraint(intersectQueries(a, b), intersectQueries(b, a));
+        expectSameConstraint(intersectQueries(intersectQueries(a, b), c),
+                             intersectQueries(a, intersectQueries(b, c)));
+        expectSameConstraint(intersectQueries(a, a), a);
+    }
+}
+
+TEST(PolicyComposition, VisibilityNarrowsEveryField) {
+    RayQuery a, b;
+    a.layerMask = layersFrom(1);
+    a.tMin = 2.f;
+    b.layerMask = layerBit(0) | layerBit(2);
+    b.tMax = 5.f;
+    const RayQuery q = intersectQueries(a, b);
+    EXPECT_EQ(q.layerMask, layerBit(2));
+    EXPECT_EQ(q.tMin, 2.f);
+    EXPECT_EQ(q.tMax, 5.f);
+}
+
+TEST(PolicyComposition, TooManyClipVolumesAreAnErrorNotATruncation) {
+    RayQuery a, b;
+    for (int i = 0; i < kMaxClipVolumes; ++i) {
+        a.clips[size_t(i)].radius = float(i);
+        b.clips[size_t(i)].radius = float(100 + i);
+    }
+    a.clipCount = b.clipCount = kMaxClipVolumes;
+    EXPECT_NO_THROW(intersectQueries(a, a)); // identical volumes are kept once
+    EXPECT_THROW(intersectQueries(a, b), Error);
+}
+
+TEST(PolicyComposition, ColourIsFunctionCompositionBottomToTop) {
+    std::mt19937 rng(3);
+    for (int i = 0; i < 100; ++i) {
+        const ColorPolicy lower = randomColor(rng), upper = randomColor(rng), top = randomColor(rng);
+        const ColorPolicy both = composeColor(lower, upper);
+        const glm::vec3 c(0.3f, -0.2f, 0.9f);
+        const glm::vec3 expected = upper.matrix * (lower.matrix * c + lower.offset) + upper.offset;
+        const glm::vec3 got = both.matrix * c + both.offset;
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], expected[k], 1e-5f);
+        expectNear(composeColor(composeColor(lower, upper), top), composeColor(lower, composeColor(upper, top)), 1e-4f);
+        expectNear(composeColor(ColorPolicy{}, lower), lower, 0.f);
+        expectNear(composeColor(lower, ColorPolicy{}), lower, 0.f);
+    }
+}
+
+TEST(PolicyComposition, ColourOrderMattersForNonCommutingMaps) {
+    ColorPolicy grey; // luminance to all channels
+    for (int i = 0; i < 3; ++i) grey.matrix[i] = glm::vec3(1.f / 3.f);
+    ColorPolicy redTint;
+    redTint.matrix = glm::mat3(glm::vec3(1.f, 0.f, 0.f), glm::vec3(0.f, 0.2f, 0.f), glm::vec3(0.f, 0.f, 0.2f));
+    const glm::vec3 white(1.f);
+    const ColorPolicy tintThenGrey = composeColor(redTint, grey);
+    const ColorPolicy greyThenTint = composeColor(grey, redTint);
+    const glm::vec3 a = tintThenGrey.matrix * white, b = greyThenTint.matrix * white;
+    EXPECT_NEAR(a.r, a.g, 1e-6f) << "grey on top leaves a grey pixel";
+    EXPECT_GT(b.r, 2.f * b.g) << "the tint on top leaves a red pixel";
+}
+
+TEST(PolicyComposition, UpperShadingOverridesOnlyTheFieldsItSets) {
+    PixelPolicy base;
+    base.ray.shading.maxDepth = 5;
+    LensContribution lower, upper;
+    lower.shading.shadows = false;
+    lower.shading.shadowStrength = 0.25f;
+    upper.shading.shadows = true;
+    upper.shading.reflections = false;
+    const PixelPolicy p = applyContribution(applyContribution(base, lower), upper);
+    EXPECT_TRUE(p.ray.shading.shadows);
+    EXPECT_EQ(p.ray.shading.shadowStrength, 0.25f);
+    EXPECT_FALSE(p.ray.shading.reflections);
+    EXPECT_TRUE(p.ray.shading.refractions);
+    EXPECT_EQ(p.ray.shading.maxDepth, 5);
+    const PixelPolicy swapped = applyContribution(applyContribution(base, upper), lower);
+    EXPECT_FALSE(swapped.ray.shading.shadows) << "order decides between conflicting overrides";
+}
+
+TEST(PolicyComposition, TheUpperLensLooksAtTheLowerLensImage) {
+    // Lower: shift right by 0.1. Upper: magnify 2× about (0.5, 0.5). A pixel at u looks, through
+    // the upper lens, at 0.5 + (u − 0.5)/2 of the lower image, which shows the scene at +0.1.
+    LensContribution shift, magnify;
+    shift.sampleFromScreen[2] = glm::vec3(0.1f, 0.f, 1.f);
+    magnify.sampleFromScreen = glm::mat3(glm::vec3(0.5f, 0.f, 0.f), glm::vec3(0.f, 0.5f, 0.f), glm::vec3(0.25f, 0.25f, 1.f));
+    const PixelPolicy p = applyContribution(applyContribution(PixelPolicy{}, shift), magnify);
+    const glm::vec2 s = p.samplePosition({90.f, 50.f}, 100, 100); // u = (0.9, 0.5)
+    EXPECT_NEAR(s.x, 100.f * (0.5f + 0.4f / 2.f + 0.1f), 1e-4f);
+    EXPECT_NEAR(s.y, 50.f, 1e-4f);
+    EXPECT_FALSE(applyContribution(PixelPolicy{}, LensContribution{}).isShaped());
+}
