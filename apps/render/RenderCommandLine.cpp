@@ -50,6 +50,8 @@ std::string renderUsage() {
     return R"(mvcl-render: ray-trace a layered scene to an image.
 
 usage: mvcl-render [options] <model.gltf | model.glb | builtin:NAME>
+       mvcl-render [options] --lenses FILE      (the file names the scene)
+       mvcl-render --list-lenses
 
 Scenes:  builtin:cube-in-cube (the default scene of the paper), builtin:onion
 Options:
@@ -65,11 +67,20 @@ Options:
       --camera N|NAME     use the file's camera N (index) or with that name
       --layer-rules FILE  JSON layer rules: {"rules": [{"match": "*skin*", "layer": 0}, ...]}
       --layer-rule RULES  inline rules "glob=layer;glob=layer" (applied before the file's)
+      --lenses FILE       lens-stack JSON: lenses, and the scene, camera and layer rules unless
+                          given here (command-line layer rules come first, so they win)
+      --lens SPEC         one more lens on top, repeatable: TYPE:key=value,... where a key is a
+                          property of the lens or shape, center, size, points, feather, outline,
+                          outlineColor, label, enabled; bracket values with commas, e.g.
+                          --lens layer:shape=ellipse,center=[0.5,0.5],size=[0.4,0.4],layers=1-
+      --save-lenses FILE  write the effective scene, camera, layer rules and lenses as a lens-stack file
+      --list-lenses       list the lens types found and their properties, then exit
       --info              load and validate only; print meshes, triangles, layers, bounds
       --no-progress       no progress bar on stderr
   -h, --help              this text
       --version           version
-Exit codes: 0 ok, 1 bad input file, 2 bad arguments, 3 image not written, 4 internal error.
+Exit codes: 0 ok, 1 bad input file (scene, layer rules, lens stack), 2 bad arguments (including
+--lens), 3 image or --save-lenses file not written, 4 internal error.
 )";
 }
 
@@ -104,11 +115,16 @@ RenderCommandLine parseRenderCommandLine(const std::vector<std::string> &args) {
         } else if (a == "--camera") cl.camera = value();
         else if (a == "--layer-rules") cl.layerRulesFile = value();
         else if (a == "--layer-rule") cl.layerRules = value();
+        else if (a == "--lenses") cl.lensFile = value();
+        else if (a == "--lens") cl.lensSpecs.push_back(value());
+        else if (a == "--save-lenses") cl.saveLensesFile = value();
+        else if (a == "--list-lenses") cl.listLenses = true;
         else if (!a.empty() && a[0] == '-') usageError("unknown option '" + a + "'");
         else if (cl.source.empty()) cl.source = a;
         else usageError("more than one scene given ('" + cl.source + "' and '" + a + "')");
     }
-    if (!cl.help && !cl.version && cl.source.empty()) usageError("no scene given");
+    if (!cl.help && !cl.version && !cl.listLenses && cl.source.empty() && cl.lensFile.empty())
+        usageError("no scene given");
     if (cl.eye && cl.target && *cl.eye == *cl.target) usageError("--eye and --target are the same point");
     return cl;
 }

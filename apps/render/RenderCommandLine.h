@@ -13,9 +13,9 @@ namespace mvcl::cli {
 /// Exit codes of mvcl-render (documented in --help and the README).
 enum ExitCode : int {
     kExitOk = 0,
-    kExitBadInput = 1,  ///< the scene or a layer-rule file could not be loaded
-    kExitUsage = 2,     ///< bad command-line arguments
-    kExitOutput = 3,    ///< the image could not be written
+    kExitBadInput = 1,  ///< the scene, a layer-rule or a lens-stack file could not be loaded
+    kExitUsage = 2,     ///< bad command-line arguments (including a bad --lens spec)
+    kExitOutput = 3,    ///< the image or the --save-lenses file could not be written
     kExitInternal = 4,  ///< a bug: an unexpected exception
 };
 
@@ -34,6 +34,10 @@ struct RenderCommandLine {
     std::string camera;              ///< glTF camera index or name; empty = default view
     std::string layerRulesFile;
     std::string layerRules;          ///< "glob=layer;..."
+    std::string lensFile;            ///< lens-stack JSON (--lenses)
+    std::vector<std::string> lensSpecs; ///< "type:key=value,..." (--lens), stacked above the file's
+    std::string saveLensesFile;      ///< write the effective stack here (--save-lenses)
+    bool listLenses = false;
     bool info = false;
     bool help = false;
     bool version = false;

@@ -5,14 +5,19 @@
 #include "RenderCommandLine.h"
 
 #include <mvcl/core/Error.h>
+#include <mvcl/io/LensStackFile.h>
 #include <mvcl/io/SceneLoader.h>
+#include <mvcl/lens/LensRegistry.h>
 #include <mvcl/tracer/Tracer.h>
 #include <mvcl/view/Camera.h>
 #include <mvcl/view/ImageIO.h>
+#include <mvcl/view/LensOutlines.h>
 #include <mvcl/view/Renderer.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -66,18 +71,65 @@ void printInfo(const Scene &scene) {
     for (const std::string &w : scene.report.warnings) std::printf("warning    %s\n", w.c_str());
 }
 
-Camera chooseCamera(const Scene &scene, const RenderCommandLine &cl) {
+/// 31420 → "31,420".
+std::string grouped(uint64_t number) {
+    const std::string digits = std::to_string(number);
+    std::string text;
+    for (std::size_t i = 0; i < digits.size(); ++i) {
+        if (i > 0 && (digits.size() - i) % 3 == 0) text.push_back(',');
+        text.push_back(digits[i]);
+    }
+    return text;
+}
+
+/// Characters on screen, not bytes: ranges say "∞".
+std::size_t displayWidth(const std::string &text) {
+    return std::size_t(std::count_if(text.begin(), text.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+}
+
+/// Every lens type with its property table, generated from the declarations.
+void printLensTypes(const LensRegistry &registry) {
+    for (const std::string &type : registry.lensTypes()) {
+        const std::shared_ptr<Lens> lens = registry.create(type);
+        std::printf("%s: %s\n    from %s\n", type.c_str(), lens->info().description.c_str(),
+                    registry.origin(type).c_str());
+        std::vector<std::vector<std::string>> rows{{"property", "type", "default", "range", "doc"}};
+        for (const PropertyDecl &decl : lens->properties())
+            rows.push_back({decl.name, propertyTypeName(decl.type), decl.defaultValue.toString(), decl.rangeText(),
+                            decl.doc});
+        std::vector<std::size_t> widths(rows.front().size(), 0);
+        for (const auto &row : rows)
+            for (std::size_t column = 0; column < row.size(); ++column)
+                widths[column] = std::max(widths[column], displayWidth(row[column]));
+        for (const auto &row : rows) {
+            std::string line = "   ";
+            for (std::size_t column = 0; column + 1 < row.size(); ++column)
+                line.append(" ").append(row[column]).append(widths[column] - displayWidth(row[column]) + 1, ' ');
+            std::printf("%s %s\n", line.c_str(), row.back().c_str());
+        }
+    }
+}
+
+/// The view: the command line's --camera, else the lens file's camera, else the scene's default;
+/// then --eye/--target/--up/--fov override parts of it.
+Camera chooseCamera(const Scene &scene, const RenderCommandLine &cl, const std::optional<LensStackCamera> &fileCamera) {
     const float aspect = float(cl.width) / float(cl.height);
     const glm::vec3 origin(scene.worldOrigin);
+    const bool fileNamesCamera = cl.camera.empty() && fileCamera && !fileCamera->sceneCamera.empty();
+    const std::string &cameraName = fileNamesCamera ? fileCamera->sceneCamera : cl.camera;
     Camera camera;
-    if (!cl.camera.empty()) {
+    if (!cameraName.empty()) {
         const CameraDesc *found = nullptr;
         for (std::size_t i = 0; i < scene.cameras.size(); ++i)
-            if (scene.cameras[i].name == cl.camera || std::to_string(i) == cl.camera) found = &scene.cameras[i];
+            if (scene.cameras[i].name == cameraName || std::to_string(i) == cameraName) found = &scene.cameras[i];
         if (!found)
-            throw Error("command line", "--camera '" + cl.camera + "': the scene has " +
-                                            std::to_string(scene.cameras.size()) + " cameras and none by that name or index");
+            throw Error(fileNamesCamera ? cl.lensFile : "command line",
+                        std::string(fileNamesCamera ? "camera" : "--camera") + " '" + cameraName + "': the scene has " +
+                            std::to_string(scene.cameras.size()) + " cameras and none by that name or index");
         camera = Camera::fromDesc(*found);
+    } else if (fileCamera) {
+        camera = Camera::lookAt(fileCamera->eye - origin, fileCamera->target - origin, fileCamera->up,
+                                fileCamera->verticalFovDegrees);
     } else if (scene.name.rfind("builtin:", 0) == 0 && !scene.cameras.empty()) {
         camera = Camera::fromDesc(scene.cameras.front());
     } else {
@@ -89,7 +141,43 @@ Camera chooseCamera(const Scene &scene, const RenderCommandLine &cl) {
     return Camera::lookAt(eye, target, cl.up.value_or(camera.up()), cl.fov.value_or(camera.verticalFov()));
 }
 
+/// The lens file's description (or an empty one) with the command line's lenses on top.
+LensStackDescription loadLenses(const RenderCommandLine &cl, const LensRegistry &registry) {
+    LensStackDescription description;
+    if (!cl.lensFile.empty()) description = readLensStackFile(cl.lensFile, registry);
+    for (const std::string &spec : cl.lensSpecs) {
+        try { // a malformed option value is a usage error, not a bad file
+            description.lenses.add(parseLensSpec(spec, registry));
+        } catch (const Error &e) {
+            throw Error("command line", e.what());
+        }
+    }
+    return description;
+}
+
+void printLensCosts(const LensStack &stack, const PolicyMap &policies, const RenderStats &stats) {
+    for (const LensCost &cost : stack.costs(policies, stats.perPolicy)) {
+        const Lens &lens = *stack.lens(cost.index);
+        std::printf("lens %d %s '%s': %s px, %s rays, %.1f ms%s\n", cost.index, lens.typeName().c_str(),
+                    cost.label.c_str(), grouped(cost.pixels).c_str(), grouped(cost.rays).c_str(), cost.milliseconds,
+                    lens.snapshot()->enabled ? "" : " (disabled)");
+    }
+    std::printf("policies   %zu distinct (base included), %s px blend several (feathered edges)\n",
+                policies.policies().size(), grouped(policies.blendedPixelCount()).c_str());
+}
+
 int run(const RenderCommandLine &cl) {
+    LensRegistry registry;
+    for (const Error &skipped : registry.loadModules(LensRegistry::defaultSearchPath()))
+        std::fprintf(stderr, "mvcl-render: warning: plugin skipped: %s\n", skipped.what());
+    if (cl.listLenses) {
+        printLensTypes(registry);
+        return kExitOk;
+    }
+    const LensStackDescription lenses = loadLenses(cl, registry);
+    const std::string source = cl.source.empty() ? lenses.scene : cl.source;
+    if (source.empty()) throw Error("command line", "no scene given, and " + cl.lensFile + " names none");
+
     SceneLoadOptions loadOptions;
     if (!cl.layerRules.empty()) {
         try {
@@ -102,8 +190,10 @@ int run(const RenderCommandLine &cl) {
         const LayerRules fileRules = LayerRules::fromJsonFile(cl.layerRulesFile);
         for (const LayerRule &rule : fileRules.rules()) loadOptions.layerRules.add(rule);
     }
+    // The lens file's rules come last: the first matching rule wins, so the command line's win.
+    for (const LayerRule &rule : lenses.layerRules.rules()) loadOptions.layerRules.add(rule);
 
-    const Scene scene = loadScene(cl.source, loadOptions);
+    const Scene scene = loadScene(source, loadOptions);
     if (cl.info) {
         printInfo(scene);
         return kExitOk;
@@ -111,7 +201,21 @@ int run(const RenderCommandLine &cl) {
 
     const Tracer tracer(scene);
     const TracerBuildStats &build = tracer.buildStats();
-    const Camera camera = chooseCamera(scene, cl);
+    const Camera camera = chooseCamera(scene, cl, lenses.camera);
+    if (!cl.saveLensesFile.empty()) {
+        LensStackDescription effective = lenses; // shares the lenses
+        effective.scene = source;
+        const glm::vec3 origin(scene.worldOrigin);
+        effective.camera = LensStackCamera{"", camera.eye() + origin, camera.target() + origin, camera.up(),
+                                           camera.verticalFov()};
+        effective.layerRules = loadOptions.layerRules;
+        try {
+            writeLensStackFile(cl.saveLensesFile, effective);
+        } catch (const Error &e) {
+            std::fprintf(stderr, "mvcl-render: %s\n", e.what());
+            return kExitOutput;
+        }
+    }
 
     RenderSettings settings;
     settings.width = cl.width;
@@ -119,14 +223,15 @@ int run(const RenderCommandLine &cl) {
     settings.samplesPerPixel = cl.samplesPerPixel;
     settings.threads = cl.threads;
     settings.seed = cl.seed;
-    const PolicyMap policies(cl.width, cl.height);
+    const PolicyMap policies = lenses.lenses.compose(RayPolicy{}, cl.width, cl.height);
     Framebuffer image;
     ProgressBar bar(cl.progress && isatty(STDERR_FILENO));
     const RenderStats stats = Renderer(tracer).render(camera, policies, settings, image,
                                                       [&](float f) { bar.update(f); });
     bar.finish();
+    drawLensOutlines(lenses.lenses, image);
 
-    const std::string output = cl.output.empty() ? "out/" + sceneStem(cl.source) + ".png" : cl.output;
+    const std::string output = cl.output.empty() ? "out/" + sceneStem(source) + ".png" : cl.output;
     try {
         writeImage(output, image);
     } catch (const Error &e) {
@@ -146,6 +251,8 @@ int run(const RenderCommandLine &cl) {
                 double(stats.rays.total()) * 1e-6, double(stats.rays.primary) * 1e-6, double(stats.rays.shadow) * 1e-6,
                 double(stats.rays.reflection) * 1e-6, double(stats.rays.refraction) * 1e-6,
                 stats.raysPerSecond() * 1e-6);
+    if (!lenses.lenses.isEmpty()) printLensCosts(lenses.lenses, policies, stats);
+    if (!cl.saveLensesFile.empty()) std::printf("saved      %s\n", cl.saveLensesFile.c_str());
     std::printf("wrote      %s\n", output.c_str());
     return kExitOk;
 }

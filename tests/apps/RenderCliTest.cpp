@@ -1,53 +1,19 @@
 // mvcl-render as a user runs it: exit codes, messages, and every shared model rendered.
 
 #include "ImageCompare.h"
+#include "apps/RenderCliRunner.h"
 
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
+using namespace mvcl::test;
 
 namespace {
-
-struct CommandResult {
-    int exitCode = -1;
-    std::string output; // stdout and stderr together
-};
-
-CommandResult runRender(const std::string &args) {
-    const std::string cmd = std::string(MVCL_RENDER_EXE) + " --no-progress " + args + " 2>&1";
-    CommandResult r;
-    FILE *pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf;
-    while (std::fgets(buf.data(), int(buf.size()), pipe)) r.output += buf.data();
-    const int status = pclose(pipe);
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
-
-fs::path outDir() {
-    fs::path p = fs::temp_directory_path() / "mvcl-cli-test";
-    fs::create_directories(p);
-    return p;
-}
-
-std::string dataPath(const std::string &rel) { return (fs::path(MVCL_TEST_DATA_DIR) / rel).string(); }
-
-/// The path in double quotes for the shell. (Built with append: GCC 12 warns falsely,
-/// -Wrestrict, on `"\"" + std::string`.)
-std::string quoted(const std::string &path) {
-    std::string q(1, '"');
-    q.append(path).push_back('"');
-    return q;
-}
 
 /// Mean luminance spread of an image: a blank (single-colour) image has zero.
 double imageVariance(const mvcl::Framebuffer &f) {

@@ -105,10 +105,13 @@ LayerRules LayerRules::fromJsonFile(const std::filesystem::path &path) {
     if (!in) throw Error(source, "cannot open the layer rules file");
     std::ostringstream buffer;
     buffer << in.rdbuf();
+    return fromJsonText(buffer.str(), source);
+}
 
+LayerRules LayerRules::fromJsonText(std::string_view text, const std::string &source) {
     nlohmann::json doc;
     try {
-        doc = nlohmann::json::parse(buffer.str());
+        doc = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception &e) {
         throw Error(source, std::string("invalid JSON: ") + e.what());
     }

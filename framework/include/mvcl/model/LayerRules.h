@@ -28,6 +28,8 @@ public:
 
     /// Throws mvcl::Error naming the file and the problem.
     static LayerRules fromJsonFile(const std::filesystem::path &path);
+    /// The same format from text already read; errors name `sourceName`.
+    static LayerRules fromJsonText(std::string_view text, const std::string &sourceName);
     /// Parses "glob=layer;glob=layer". Throws mvcl::Error on bad syntax or a layer out of range.
     static LayerRules fromString(std::string_view text);
 

@@ -1,0 +1,77 @@
+#pragma once
+/// \file LensStackFile.h
+/// Lens-stack (session) files: a scene, a camera, layer rules and a stack of lenses with their
+/// regions and properties, as JSON — and the command line's one-lens form "type:key=value,...".
+///
+///     { "version": 1,
+///       "scene": "builtin:cube-in-cube",
+///       "camera": {"eye": [x,y,z], "target": [x,y,z], "up": [0,1,0], "fov": 40}  or  {"name": "cam"},
+///       "layerRules": [{"match": "*Skin*", "layer": 0}],
+///       "lenses": [{"type": "layer", "label": "reveal", "enabled": true,
+///                   "region": {"shape": "ellipse", "center": [0.5,0.5], "size": [0.4,0.4],
+///                              "feather": 6, "outline": 2, "outlineColor": [1,1,1]},
+///                   "properties": {"layers": "1-", "distance": 0}}] }      // bottom → top
+///
+/// A relative scene path is relative to the file's folder. Every key is optional except a
+/// lens's "type". Unknown keys anywhere are an error naming the
+/// file and the JSON path; property values are read with the property's own declaration.
+
+#include <mvcl/lens/LensStack.h>
+#include <mvcl/model/LayerRules.h>
+
+#include <glm/vec3.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace mvcl {
+
+class LensRegistry;
+
+/// The view a lens-stack file asks for: one of the scene's own cameras, or an explicit look-at.
+struct LensStackCamera {
+    /// A camera of the scene by name or index ("0"); when set, the fields below are unused.
+    std::string sceneCamera;
+    glm::vec3 eye{0.f, 0.f, 5.f}; ///< world space (the file's units)
+    glm::vec3 target{0.f};
+    glm::vec3 up{0.f, 1.f, 0.f};
+    float verticalFovDegrees = 40.f;
+
+    bool operator==(const LensStackCamera &other) const = default;
+};
+
+struct LensStackDescription {
+    std::string scene; ///< model path or builtin:NAME; empty = none given
+    std::optional<LensStackCamera> camera;
+    LayerRules layerRules;
+    LensStack lenses; ///< every lens committed
+};
+
+/// Equal scene, camera, rules and lenses (type, label, committed enabled/region/properties).
+bool operator==(const LensStackDescription &a, const LensStackDescription &b);
+
+/// Reads and commits a lens-stack file; a relative scene path comes back resolved against the
+/// file's folder. Throws mvcl::Error(path, "json.path: problem").
+LensStackDescription readLensStackFile(const std::filesystem::path &path,
+                                       const LensRegistry &registry);
+/// The same from text; errors name `sourceName` in place of a file.
+LensStackDescription parseLensStackJson(std::string_view text, const std::string &sourceName,
+                                        const LensRegistry &registry);
+
+/// The file's text: every lens with its committed state, property values in canonical text.
+std::string lensStackJson(const LensStackDescription &description);
+/// Writes a scene file path relative to the file's folder, and writes atomically (a temporary
+/// file in the same folder, then rename), so a failed write
+/// leaves an existing file as it was. Throws mvcl::Error(path, problem).
+void writeLensStackFile(const std::filesystem::path &path, const LensStackDescription &description);
+
+/// One lens from the command line: "type:key=value,key=value" where a key is a property of the
+/// lens or a region key (shape, center, size, points, feather, outline, outlineColor) or label,
+/// enabled. Values with commas are bracketed ("center=[0.3,0.5]", "layers=[1,2]"). Returns the
+/// lens committed; throws mvcl::Error("--lens", problem naming the spec and the key).
+std::shared_ptr<Lens> parseLensSpec(std::string_view spec, const LensRegistry &registry);
+
+} // namespace mvcl

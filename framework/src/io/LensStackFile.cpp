@@ -1,0 +1,581 @@
+#include <mvcl/io/LensStackFile.h>
+
+#include <mvcl/core/Error.h>
+#include <mvcl/lens/LensRegistry.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <span>
+#include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <vector>
+
+namespace mvcl {
+
+namespace {
+
+// Ordered, so written files keep the natural key order and properties stay in table order.
+using Json = nlohmann::ordered_json;
+
+constexpr int kFileVersion = 1;
+
+constexpr std::string_view kRegionKeys[] = {"shape",   "center",  "size",        "points",
+                                            "feather", "outline", "outlineColor"};
+
+std::string joined(std::span<const std::string_view> names) {
+    std::string text;
+    for (std::string_view name : names) text.append(text.empty() ? "" : ", ").append(name);
+    return text;
+}
+
+/// Where a value sits, for error messages: the file (or option) and the JSON path in it.
+/// On the command line the structure ("region", "properties") is implicit, so only leaf keys
+/// show up in the path.
+struct JsonLocation {
+    std::string source;
+    std::string path;
+    bool commandLine = false;
+
+    JsonLocation key(std::string_view name) const {
+        std::string child = path;
+        child.append(path.empty() ? "" : (commandLine ? ": " : ".")).append(name);
+        return {source, std::move(child), commandLine};
+    }
+    JsonLocation section(std::string_view name) const { return commandLine ? *this : key(name); }
+    JsonLocation index(std::size_t i) const {
+        return {source, path + "[" + std::to_string(i) + "]", commandLine};
+    }
+    [[noreturn]] void fail(const std::string &problem) const {
+        throw Error(source, path.empty() ? problem : path + ": " + problem);
+    }
+};
+
+const Json &expectObject(const Json &value, const JsonLocation &where) {
+    if (!value.is_object()) where.fail(std::string("expected an object, got ") + value.type_name());
+    return value;
+}
+
+void rejectUnknownKeys(const Json &object, std::span<const std::string_view> known,
+                       const JsonLocation &where) {
+    for (const auto &[key, value] : object.items())
+        if (std::find(known.begin(), known.end(), key) == known.end())
+            where.fail("unknown key '" + key + "' (known: " + joined(known) + ")");
+}
+
+std::string readString(const Json &value, const JsonLocation &where) {
+    if (!value.is_string()) where.fail(std::string("expected a string, got ") + value.type_name());
+    return value.get<std::string>();
+}
+
+bool readBool(const Json &value, const JsonLocation &where) {
+    if (!value.is_boolean()) where.fail(std::string("expected true or false, got ") + value.dump());
+    return value.get<bool>();
+}
+
+float readNumber(const Json &value, const JsonLocation &where) {
+    if (!value.is_number()) where.fail("expected a number, got " + value.dump());
+    const double number = value.get<double>();
+    if (!std::isfinite(float(number))) where.fail("number " + value.dump() + " is out of range");
+    return float(number);
+}
+
+template <int N>
+glm::vec<N, float> readVector(const Json &value, const JsonLocation &where) {
+    if (!value.is_array() || value.size() != std::size_t(N))
+        where.fail("expected an array of " + std::to_string(N) + " numbers, got " + value.dump());
+    glm::vec<N, float> v;
+    for (int i = 0; i < N; ++i) v[i] = readNumber(value[std::size_t(i)], where.index(std::size_t(i)));
+    return v;
+}
+
+/// A property value as the text its declaration parses: strings as they are, numbers and
+/// booleans in their JSON spelling, arrays as comma-separated elements ([r,g,b], [1,2]).
+std::string propertyText(const Json &value, const JsonLocation &where) {
+    if (value.is_string()) return value.get<std::string>();
+    if (value.is_number() || value.is_boolean()) return value.dump();
+    if (!value.is_array())
+        where.fail(std::string("expected a string, number, boolean or array, got ") + value.type_name());
+    std::string text;
+    for (std::size_t i = 0; i < value.size(); ++i) {
+        const Json &element = value[i];
+        if (element.is_array() || element.is_object() || element.is_null())
+            where.index(i).fail("expected a string or number, got " + element.dump());
+        text.append(i ? "," : "").append(element.is_string() ? element.get<std::string>() : element.dump());
+    }
+    return text;
+}
+
+LensStackCamera readCamera(const Json &value, const JsonLocation &where) {
+    expectObject(value, where);
+    LensStackCamera camera;
+    if (value.contains("name")) {
+        static constexpr std::string_view kNamedKeys[] = {"name"};
+        rejectUnknownKeys(value, kNamedKeys, where);
+        const Json &name = value["name"];
+        if (name.is_number_unsigned()) camera.sceneCamera = name.dump();
+        else camera.sceneCamera = readString(name, where.key("name"));
+        if (camera.sceneCamera.empty()) where.key("name").fail("is empty");
+        return camera;
+    }
+    static constexpr std::string_view kViewKeys[] = {"eye", "target", "up", "fov"};
+    rejectUnknownKeys(value, kViewKeys, where);
+    for (const char *required : {"eye", "target"})
+        if (!value.contains(required))
+            where.fail(std::string("missing \"") + required + "\" (or give the scene camera's \"name\")");
+    camera.eye = readVector<3>(value["eye"], where.key("eye"));
+    camera.target = readVector<3>(value["target"], where.key("target"));
+    if (camera.eye == camera.target) where.fail("eye and target are the same point");
+    if (value.contains("up")) camera.up = readVector<3>(value["up"], where.key("up"));
+    if (camera.up == glm::vec3(0.f)) where.key("up").fail("must not be zero");
+    if (value.contains("fov")) camera.verticalFovDegrees = readNumber(value["fov"], where.key("fov"));
+    if (!(camera.verticalFovDegrees > 0.f && camera.verticalFovDegrees < 180.f))
+        where.key("fov").fail("must be in (0, 180) degrees");
+    return camera;
+}
+
+LensRegion readRegion(const Json &value, const JsonLocation &where) {
+    expectObject(value, where);
+    rejectUnknownKeys(value, kRegionKeys, where);
+    std::string shape = value.contains("points") ? "polygon" : "rectangle";
+    if (value.contains("shape")) shape = readString(value["shape"], where.key("shape"));
+
+    std::vector<glm::vec2> points;
+    glm::vec2 center(0.5f), size(0.5f);
+    if (shape == "polygon") {
+        for (const char *boxKey : {"center", "size"})
+            if (value.contains(boxKey)) where.key(boxKey).fail("a polygon region is given by its \"points\" only");
+        if (!value.contains("points")) where.fail("a polygon region needs \"points\": [[x, y], ...]");
+        const JsonLocation pointsWhere = where.key("points");
+        if (!value["points"].is_array()) pointsWhere.fail("expected an array of [x, y] points");
+        for (std::size_t i = 0; i < value["points"].size(); ++i)
+            points.push_back(readVector<2>(value["points"][i], pointsWhere.index(i)));
+    } else if (shape == "rectangle" || shape == "ellipse") {
+        if (value.contains("points"))
+            where.key("points").fail("only a polygon region has points (shape is " + shape + ")");
+        if (value.contains("center")) center = readVector<2>(value["center"], where.key("center"));
+        if (value.contains("size")) size = readVector<2>(value["size"], where.key("size"));
+    } else {
+        where.key("shape").fail("unknown shape '" + shape + "' (known: rectangle, ellipse, polygon)");
+    }
+    const float feather = value.contains("feather") ? readNumber(value["feather"], where.key("feather")) : 0.f;
+    const float outline = value.contains("outline") ? readNumber(value["outline"], where.key("outline")) : 0.f;
+    const glm::vec3 outlineColor = value.contains("outlineColor")
+                                       ? readVector<3>(value["outlineColor"], where.key("outlineColor"))
+                                       : LensRegion().outlineColor();
+    try {
+        LensRegion region = shape == "polygon"   ? LensRegion::polygon(std::move(points))
+                            : shape == "ellipse" ? LensRegion::ellipse(center, size)
+                                                 : LensRegion::rectangle(center, size);
+        region.setFeather(feather);
+        region.setOutlineWidth(outline);
+        region.setOutlineColor(outlineColor);
+        region.validate();
+        return region;
+    } catch (const Error &e) {
+        where.fail(e.problem());
+    }
+}
+
+std::string unknownPropertyMessage(const std::string &key, const Lens &lens, bool commandLine) {
+    std::string known;
+    for (const PropertyDecl &decl : lens.properties()) known.append(known.empty() ? "" : ", ").append(decl.name);
+    std::string message = "unknown property '" + key + "' of lens '" + lens.typeName() + "' (known: " + known + ")";
+    if (commandLine) message += "; region keys: " + joined(kRegionKeys) + "; label, enabled";
+    return message;
+}
+
+std::shared_ptr<Lens> readLens(const Json &value, const LensRegistry &registry, const JsonLocation &where) {
+    static constexpr std::string_view kLensKeys[] = {"type", "label", "enabled", "region", "properties"};
+    expectObject(value, where);
+    rejectUnknownKeys(value, kLensKeys, where);
+    if (!value.contains("type")) where.fail("missing \"type\"");
+    const std::string type = readString(value["type"], where.key("type"));
+    std::shared_ptr<Lens> lens;
+    try {
+        lens = registry.create(type);
+    } catch (const Error &e) {
+        where.key("type").fail(e.problem());
+    }
+    if (value.contains("label")) lens->setLabel(readString(value["label"], where.key("label")));
+    if (value.contains("enabled")) lens->setEnabled(readBool(value["enabled"], where.key("enabled")));
+    if (value.contains("region")) lens->setRegion(readRegion(value["region"], where.section("region")));
+    if (value.contains("properties")) {
+        const JsonLocation propertiesWhere = where.section("properties");
+        for (const auto &[key, propertyValue] : expectObject(value["properties"], propertiesWhere).items()) {
+            if (!findProperty(lens->properties(), key))
+                propertiesWhere.fail(unknownPropertyMessage(key, *lens, where.commandLine));
+            const JsonLocation keyWhere = propertiesWhere.key(key);
+            const std::string text = propertyText(propertyValue, keyWhere);
+            try {
+                lens->setPropertyText(key, text);
+            } catch (const Error &e) {
+                keyWhere.fail(e.problem());
+            }
+        }
+    }
+    try {
+        lens->commit();
+    } catch (const Error &e) {
+        where.fail(e.what());
+    }
+    return lens;
+}
+
+LensStackDescription readDescription(const Json &document, const LensRegistry &registry,
+                                     const JsonLocation &where) {
+    static constexpr std::string_view kTopKeys[] = {"version", "scene", "camera", "layerRules", "lenses"};
+    expectObject(document, where);
+    rejectUnknownKeys(document, kTopKeys, where);
+    if (document.contains("version")) {
+        const Json &version = document["version"];
+        if (!version.is_number_integer() || version.get<long long>() != kFileVersion)
+            where.key("version").fail("this build reads version " + std::to_string(kFileVersion) + ", got " +
+                                      version.dump());
+    }
+
+    LensStackDescription description;
+    if (document.contains("scene")) description.scene = readString(document["scene"], where.key("scene"));
+    if (document.contains("camera")) description.camera = readCamera(document["camera"], where.key("camera"));
+    if (document.contains("layerRules")) {
+        const JsonLocation rulesWhere = where.key("layerRules");
+        if (!document["layerRules"].is_array()) rulesWhere.fail("expected an array of {\"match\", \"layer\"}");
+        // The layer-rule reader checks the rules; it reads {"rules": [...]}.
+        try {
+            description.layerRules =
+                LayerRules::fromJsonText(Json{{"rules", document["layerRules"]}}.dump(), where.source);
+        } catch (const Error &e) {
+            rulesWhere.fail(e.problem());
+        }
+    }
+    if (document.contains("lenses")) {
+        const JsonLocation lensesWhere = where.key("lenses");
+        const Json &lenses = document["lenses"];
+        if (!lenses.is_array()) lensesWhere.fail("expected an array of lenses (bottom to top)");
+        for (std::size_t i = 0; i < lenses.size(); ++i) {
+            std::shared_ptr<Lens> lens = readLens(lenses[i], registry, lensesWhere.index(i));
+            try {
+                description.lenses.add(std::move(lens));
+            } catch (const Error &e) {
+                lensesWhere.index(i).fail(e.problem());
+            }
+        }
+    }
+    return description;
+}
+
+/// The double that prints as the shortest text reading back to `value` as a float, so files
+/// say 0.3 and not 0.30000001192092896.
+double shortestDouble(float value) {
+    char text[32];
+    const auto printed = std::to_chars(text, text + sizeof text, value);
+    double result = value;
+    std::from_chars(text, printed.ptr, result);
+    return result;
+}
+
+template <int N>
+Json vectorJson(const glm::vec<N, float> &v) {
+    Json array = Json::array();
+    for (int i = 0; i < N; ++i) array.push_back(shortestDouble(v[i]));
+    return array;
+}
+
+const char *shapeName(LensRegion::Shape shape) {
+    switch (shape) {
+    case LensRegion::Shape::Rectangle: return "rectangle";
+    case LensRegion::Shape::Ellipse: return "ellipse";
+    case LensRegion::Shape::Polygon: return "polygon";
+    }
+    return "rectangle";
+}
+
+Json regionJson(const LensRegion &region) {
+    Json json;
+    json["shape"] = shapeName(region.shape());
+    if (region.shape() == LensRegion::Shape::Polygon) {
+        Json points = Json::array();
+        for (const glm::vec2 &point : region.points()) points.push_back(vectorJson(point));
+        json["points"] = std::move(points);
+    } else {
+        json["center"] = vectorJson(region.center());
+        json["size"] = vectorJson(region.size());
+    }
+    json["feather"] = shortestDouble(region.feather());
+    json["outline"] = shortestDouble(region.outlineWidth());
+    json["outlineColor"] = vectorJson(region.outlineColor());
+    return json;
+}
+
+Json lensJson(const Lens &lens) {
+    const std::shared_ptr<const LensSnapshot> snapshot = lens.snapshot();
+    Json json;
+    json["type"] = lens.typeName();
+    json["label"] = lens.label();
+    json["enabled"] = snapshot->enabled;
+    json["region"] = regionJson(snapshot->region);
+    Json properties = Json::object();
+    const std::vector<PropertyValue> values = lens.committedValues();
+    for (std::size_t i = 0; i < values.size(); ++i)
+        properties[lens.properties()[i].name] = values[i].toString();
+    json["properties"] = std::move(properties);
+    return json;
+}
+
+Json descriptionJson(const LensStackDescription &description) {
+    Json json;
+    json["version"] = kFileVersion;
+    if (!description.scene.empty()) json["scene"] = description.scene;
+    if (const auto &camera = description.camera) {
+        if (!camera->sceneCamera.empty()) {
+            json["camera"] = {{"name", camera->sceneCamera}};
+        } else {
+            json["camera"] = {{"eye", vectorJson(camera->eye)},
+                              {"target", vectorJson(camera->target)},
+                              {"up", vectorJson(camera->up)},
+                              {"fov", shortestDouble(camera->verticalFovDegrees)}};
+        }
+    }
+    if (!description.layerRules.isEmpty()) {
+        Json rules = Json::array();
+        for (const LayerRule &rule : description.layerRules.rules())
+            rules.push_back({{"match", rule.pattern}, {"layer", rule.layer}});
+        json["layerRules"] = std::move(rules);
+    }
+    Json lenses = Json::array();
+    for (const std::shared_ptr<Lens> &lens : description.lenses.lenses()) lenses.push_back(lensJson(*lens));
+    json["lenses"] = std::move(lenses);
+    return json;
+}
+
+/// Indented JSON with arrays of numbers and points kept on one line, as a person would write
+/// these files ("center": [0.5, 0.5] rather than one number per line).
+void appendPretty(const Json &value, int indent, std::string &out) {
+    if (value.is_object() && !value.empty()) {
+        const std::string inner(std::size_t(indent + 2), ' ');
+        out += "{\n";
+        bool first = true;
+        for (const auto &[key, member] : value.items()) {
+            out.append(first ? "" : ",\n").append(inner).append(Json(key).dump()).append(": ");
+            appendPretty(member, indent + 2, out);
+            first = false;
+        }
+        out.append("\n").append(std::size_t(indent), ' ').append("}");
+    } else if (value.is_array() && std::ranges::any_of(value, [](const Json &e) { return e.is_object(); })) {
+        const std::string inner(std::size_t(indent + 2), ' ');
+        out += "[\n";
+        for (std::size_t i = 0; i < value.size(); ++i) {
+            out.append(i ? ",\n" : "").append(inner);
+            appendPretty(value[i], indent + 2, out);
+        }
+        out.append("\n").append(std::size_t(indent), ' ').append("]");
+    } else if (value.is_array() && !value.empty()) {
+        out += "[";
+        for (std::size_t i = 0; i < value.size(); ++i) {
+            out.append(i ? ", " : "");
+            appendPretty(value[i], indent, out);
+        }
+        out += "]";
+    } else {
+        out += value.dump();
+    }
+}
+
+bool sameCommittedLens(const Lens &a, const Lens &b) {
+    const std::shared_ptr<const LensSnapshot> snapshotA = a.snapshot(), snapshotB = b.snapshot();
+    return a.typeName() == b.typeName() && a.label() == b.label() && snapshotA->enabled == snapshotB->enabled &&
+           snapshotA->region == snapshotB->region && a.committedValues() == b.committedValues();
+}
+
+/// Writes everything or fails with errno set.
+bool writeAll(int fd, std::string_view text) {
+    while (!text.empty()) {
+        const ssize_t written = ::write(fd, text.data(), text.size());
+        if (written < 0 && errno == EINTR) continue;
+        if (written <= 0) return false;
+        text.remove_prefix(std::size_t(written));
+    }
+    return true;
+}
+
+/// Temporary file in the same folder (so rename is atomic), flushed to disk, then renamed over
+/// `path`: readers see the old file or the new one, never a torn one.
+void writeFileAtomically(const std::filesystem::path &path, std::string_view text) {
+    const std::string name = path.string();
+    if (path.has_parent_path()) {
+        std::error_code ec;
+        std::filesystem::create_directories(path.parent_path(), ec);
+        if (ec) throw Error(name, "cannot create folder: " + ec.message());
+    }
+    std::string temp = name + ".part-XXXXXX";
+    const int fd = ::mkstemp(temp.data());
+    if (fd < 0) throw Error(name, std::string("cannot create a temporary file next to it: ") + std::strerror(errno));
+    const auto failWith = [&](const std::string &what) {
+        const int error = errno;
+        ::unlink(temp.c_str());
+        throw Error(name, what + ": " + std::strerror(error));
+    };
+    ::fchmod(fd, 0644); // mkstemp makes 0600; a session file is an ordinary document
+    if (!writeAll(fd, text) || ::fsync(fd) != 0) {
+        const int error = errno;
+        ::close(fd);
+        errno = error;
+        failWith("write failed");
+    }
+    if (::close(fd) != 0) failWith("write failed");
+    if (::rename(temp.c_str(), name.c_str()) != 0) failWith("cannot replace the file");
+}
+
+/// Splits at commas outside brackets: "center=[0.3,0.5],feather=4" → two items.
+std::vector<std::string_view> splitOutsideBrackets(std::string_view text, const JsonLocation &where) {
+    std::vector<std::string_view> items;
+    int depth = 0;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text[i] == '[') ++depth;
+        else if (text[i] == ']' && --depth < 0) where.fail("']' without '['");
+        else if (text[i] == ',' && depth == 0) {
+            items.push_back(text.substr(start, i - start));
+            start = i + 1;
+        }
+    }
+    if (depth != 0) where.fail("'[' without ']'");
+    items.push_back(text.substr(start));
+    return items;
+}
+
+/// 'text' in single quotes. (Built with append: GCC 12 warns falsely, -Wrestrict, on
+/// "'" + std::string.)
+std::string singleQuoted(std::string_view text) {
+    std::string quoted(1, '\'');
+    quoted.append(text).push_back('\'');
+    return quoted;
+}
+
+std::string_view trimmed(std::string_view text) {
+    const auto isSpace = [](char c) { return c == ' ' || c == '\t'; };
+    while (!text.empty() && isSpace(text.front())) text.remove_prefix(1);
+    while (!text.empty() && isSpace(text.back())) text.remove_suffix(1);
+    return text;
+}
+
+/// A command-line value as JSON: numbers, booleans and bracketed arrays as such, anything else
+/// (ellipse, 1-, primary) as a string.
+Json commandLineJson(std::string_view text) {
+    if (Json::accept(text)) return Json::parse(text);
+    return Json(std::string(text));
+}
+
+/// A model file, as opposed to builtin:NAME; its path in a file is relative to the file.
+bool isSceneFile(const std::string &scene) { return !scene.empty() && !scene.starts_with("builtin:"); }
+
+} // namespace
+
+bool operator==(const LensStackDescription &a, const LensStackDescription &b) {
+    const auto sameRule = [](const LayerRule &x, const LayerRule &y) {
+        return x.pattern == y.pattern && x.layer == y.layer;
+    };
+    const auto sameLens = [](const std::shared_ptr<Lens> &x, const std::shared_ptr<Lens> &y) {
+        return sameCommittedLens(*x, *y);
+    };
+    return a.scene == b.scene && a.camera == b.camera &&
+           std::ranges::equal(a.layerRules.rules(), b.layerRules.rules(), sameRule) &&
+           std::ranges::equal(a.lenses.lenses(), b.lenses.lenses(), sameLens);
+}
+
+LensStackDescription parseLensStackJson(std::string_view text, const std::string &sourceName,
+                                        const LensRegistry &registry) {
+    Json document;
+    try {
+        document = Json::parse(text);
+    } catch (const Json::exception &e) {
+        // Drop nlohmann's "[json.exception.parse_error.101] " prefix; keep line and column.
+        std::string message = e.what();
+        if (const std::size_t close = message.find("] "); message.starts_with("[json.") && close != std::string::npos)
+            message.erase(0, close + 2);
+        throw Error(sourceName, "invalid JSON: " + message);
+    }
+    return readDescription(document, registry, JsonLocation{sourceName, "", false});
+}
+
+LensStackDescription readLensStackFile(const std::filesystem::path &path, const LensRegistry &registry) {
+    const std::string name = path.string();
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw Error(name, "is a folder, not a lens-stack file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(name, std::string("cannot open the lens-stack file: ") + std::strerror(errno));
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    LensStackDescription description = parseLensStackJson(buffer.str(), name, registry);
+    if (isSceneFile(description.scene) && std::filesystem::path(description.scene).is_relative())
+        description.scene = (path.parent_path() / description.scene).lexically_normal().string();
+    return description;
+}
+
+std::string lensStackJson(const LensStackDescription &description) {
+    try {
+        std::string text;
+        appendPretty(descriptionJson(description), 0, text);
+        return text + "\n";
+    } catch (const Json::exception &e) { // e.g. a label that is not valid UTF-8
+        throw Error("lens-stack file", e.what());
+    }
+}
+
+void writeLensStackFile(const std::filesystem::path &path, const LensStackDescription &description) {
+    LensStackDescription relocated = description; // shares the lenses
+    if (isSceneFile(description.scene)) {
+        const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
+        relocated.scene = std::filesystem::absolute(description.scene).lexically_proximate(folder).string();
+    }
+    std::string text;
+    try {
+        text = lensStackJson(relocated);
+    } catch (const Error &e) {
+        throw Error(path.string(), e.problem());
+    }
+    writeFileAtomically(path, text);
+}
+
+std::shared_ptr<Lens> parseLensSpec(std::string_view spec, const LensRegistry &registry) {
+    const JsonLocation where{"--lens", singleQuoted(spec), true};
+    const std::size_t colon = spec.find(':');
+    const std::string_view type = trimmed(spec.substr(0, colon));
+    if (type.empty()) where.fail("expected type:key=value,... (e.g. layer:shape=ellipse,layers=1-)");
+
+    Json lens{{"type", std::string(type)}};
+    Json region = Json::object();
+    Json properties = Json::object();
+    const std::string_view settings = colon == std::string_view::npos ? std::string_view{} : spec.substr(colon + 1);
+    for (std::string_view item : splitOutsideBrackets(settings, where)) {
+        item = trimmed(item);
+        if (item.empty()) continue;
+        const std::size_t equals = item.find('=');
+        if (equals == std::string_view::npos)
+            where.fail(singleQuoted(item) + " is not key=value");
+        const std::string key(trimmed(item.substr(0, equals)));
+        const std::string_view text = trimmed(item.substr(equals + 1));
+        const bool isRegionKey = std::ranges::find(kRegionKeys, key) != std::end(kRegionKeys);
+        Json &target = isRegionKey ? region : (key == "label" || key == "enabled") ? lens : properties;
+        if (target.contains(key)) where.key(key).fail("given twice");
+        if (key == "label") target[key] = std::string(text);
+        else if (isRegionKey || key == "enabled") target[key] = commandLineJson(text);
+        // Property text is parsed by the property's declaration; brackets only protect commas.
+        else if (text.size() >= 2 && text.front() == '[' && text.back() == ']')
+            target[key] = std::string(text.substr(1, text.size() - 2));
+        else target[key] = std::string(text);
+    }
+    if (!region.empty()) lens["region"] = std::move(region);
+    if (!properties.empty()) lens["properties"] = std::move(properties);
+    return readLens(lens, registry, where);
+}
+
+} // namespace mvcl

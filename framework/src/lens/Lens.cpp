@@ -1,0 +1,173 @@
+#include <mvcl/lens/Lens.h>
+
+#include <mvcl/core/Error.h>
+
+#include <algorithm>
+#include <exception>
+#include <mutex>
+
+namespace mvcl {
+
+namespace {
+constexpr const char *kRaysProperty = "rays";
+} // namespace
+
+/// Lens state behind the d-pointer, so plugins built against one framework version keep the
+/// same sizeof(Lens) when this grows.
+class LensPrivate {
+public:
+    explicit LensPrivate(const LensInfo &lensInfo) : info(lensInfo), label(lensInfo.name) {
+        source = "lens '" + info.name + "'";
+        if (info.name.empty()) throw Error("lens", "the lens type has no name");
+        properties = info.properties;
+        properties.push_back(PropertyDecl::rayTypes(kRaysProperty, info.defaultRayTypes,
+                                                    "ray types the lens acts on"));
+        for (size_t i = 0; i < properties.size(); ++i) {
+            const PropertyDecl &decl = properties[i];
+            if (decl.name.empty()) throw Error(source, "declares a property without a name");
+            if (i + 1 < properties.size() && decl.name == kRaysProperty)
+                throw Error(source, "declares 'rays' itself; every lens has it already (set "
+                                    "LensInfo::defaultRayTypes instead)");
+            for (size_t j = 0; j < i; ++j)
+                if (properties[j].name == decl.name)
+                    throw Error(source, "declares property '" + decl.name + "' twice");
+            try {
+                decl.validate(decl.defaultValue);
+            } catch (const Error &e) {
+                throw Error(source, std::string("default of ") + e.what());
+            }
+            defaults.push_back(decl.defaultValue);
+        }
+        stagedValues = defaults;
+        committedValues = defaults;
+        snapshot = std::make_shared<const LensSnapshot>();
+    }
+
+    /// Index of `name` in `properties`; throws naming the lens and the known keys otherwise.
+    size_t indexOf(std::string_view name) const {
+        for (size_t i = 0; i < properties.size(); ++i)
+            if (properties[i].name == name) return i;
+        std::string known;
+        for (const PropertyDecl &decl : properties) known += (known.empty() ? "" : ", ") + decl.name;
+        throw Error(source, "unknown property '" + std::string(name) + "' (known: " + known + ")");
+    }
+
+    /// Re-throws `e` so that its message names this lens exactly once.
+    [[noreturn]] void rethrowNamingLens(const Error &e) const {
+        if (e.source() == source) throw e;
+        throw Error(source, e.what());
+    }
+
+    const LensInfo info;
+    std::string source; ///< "lens '<type>'", the source of every error this lens reports
+    PropertyTable properties;
+    std::vector<PropertyValue> defaults;
+    std::string label;
+
+    // Staged state; edited by one thread at a time.
+    bool stagedEnabled = true;
+    LensRegion stagedRegion;
+    std::vector<PropertyValue> stagedValues;
+
+    // Committed state; read by render threads, so guarded.
+    mutable std::mutex committedMutex;
+    std::shared_ptr<const LensSnapshot> snapshot;
+    std::vector<PropertyValue> committedValues;
+    std::vector<std::string> unreadProperties;
+};
+
+Lens::Lens(const LensInfo &info) : d(std::make_unique<LensPrivate>(info)) {}
+
+Lens::~Lens() = default;
+
+const LensInfo &Lens::info() const { return d->info; }
+const std::string &Lens::typeName() const { return d->info.name; }
+const PropertyTable &Lens::properties() const { return d->properties; }
+
+const std::string &Lens::label() const { return d->label; }
+void Lens::setLabel(std::string label) { d->label = std::move(label); }
+
+bool Lens::isEnabled() const { return d->stagedEnabled; }
+void Lens::setEnabled(bool enabled) { d->stagedEnabled = enabled; }
+
+const LensRegion &Lens::region() const { return d->stagedRegion; }
+void Lens::setRegion(const LensRegion &region) { d->stagedRegion = region; }
+
+PropertyValue Lens::property(std::string_view name) const {
+    return d->stagedValues[d->indexOf(name)];
+}
+
+void Lens::setProperty(std::string_view name, const PropertyValue &value) {
+    const size_t index = d->indexOf(name);
+    try {
+        d->properties[index].validate(value);
+    } catch (const Error &e) {
+        d->rethrowNamingLens(e);
+    }
+    d->stagedValues[index] = value;
+}
+
+void Lens::setPropertyText(std::string_view name, std::string_view text) {
+    const size_t index = d->indexOf(name);
+    try {
+        d->stagedValues[index] = d->properties[index].parse(text);
+    } catch (const Error &e) {
+        d->rethrowNamingLens(e);
+    }
+}
+
+void Lens::resetProperties() { d->stagedValues = d->defaults; }
+
+bool Lens::hasUncommittedChanges() const {
+    const std::lock_guard lock(d->committedMutex);
+    return d->snapshot->version == 0 || d->stagedEnabled != d->snapshot->enabled ||
+           !(d->stagedRegion == d->snapshot->region) || d->stagedValues != d->committedValues;
+}
+
+void Lens::commit() {
+    LensContribution contribution;
+    std::vector<std::string> unread;
+    try {
+        d->stagedRegion.validate();
+        const PropertyValues values(d->properties, d->stagedValues);
+        contribution = contribute(values, d->stagedRegion);
+        unread = values.unreadNames();
+    } catch (const Error &e) {
+        d->rethrowNamingLens(e);
+    } catch (const std::exception &e) {
+        throw Error(d->source, std::string("contribute() failed: ") + e.what());
+    } catch (...) {
+        throw Error(d->source, "contribute() failed with an unknown exception");
+    }
+    // "rays" is applied here, not by the plugin, so it never counts as unread.
+    std::erase(unread, std::string(kRaysProperty));
+    const uint8_t rays = d->stagedValues.back().toRayTypeSet();
+
+    auto next = std::make_shared<LensSnapshot>();
+    next->enabled = d->stagedEnabled;
+    next->region = d->stagedRegion;
+    next->contribution = contribution.restrictedTo(rays);
+
+    const std::lock_guard lock(d->committedMutex);
+    next->version = d->snapshot->version + 1;
+    d->snapshot = std::move(next);
+    d->committedValues = d->stagedValues;
+    d->unreadProperties = std::move(unread);
+}
+
+std::shared_ptr<const LensSnapshot> Lens::snapshot() const {
+    const std::lock_guard lock(d->committedMutex);
+    return d->snapshot;
+}
+
+std::vector<PropertyValue> Lens::committedValues() const {
+    const std::lock_guard lock(d->committedMutex);
+    return d->committedValues;
+}
+
+std::vector<std::string> Lens::unreadProperties() const {
+    const std::lock_guard lock(d->committedMutex);
+    return d->unreadProperties;
+}
+
+} // namespace mvcl

@@ -1,0 +1,227 @@
+#include <mvcl/lens/LensRegion.h>
+
+#include <mvcl/core/Error.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mvcl {
+
+namespace {
+
+constexpr float kFarOutside = -std::numeric_limits<float>::infinity();
+
+bool isFinite(const glm::vec2 &v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+bool isFinite(const glm::vec3 &v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+struct Bounds {
+    glm::vec2 lower{0.f};
+    glm::vec2 upper{0.f};
+};
+
+Bounds pointBounds(const std::vector<glm::vec2> &points) {
+    if (points.empty()) return {};
+    Bounds bounds{points.front(), points.front()};
+    for (const glm::vec2 &p : points) {
+        bounds.lower = glm::min(bounds.lower, p);
+        bounds.upper = glm::max(bounds.upper, p);
+    }
+    return bounds;
+}
+
+// Exact signed distance to an axis-aligned box of half extents `half` centred at the origin,
+// positive inside.
+float boxSignedDistance(const glm::vec2 &p, const glm::vec2 &half) {
+    const glm::vec2 d = glm::abs(p) - half;
+    const float outside = glm::length(glm::max(d, glm::vec2(0.f)));
+    const float inside = std::min(std::max(d.x, d.y), 0.f);
+    return -(outside + inside);
+}
+
+// Distance to the nearest point of the ellipse, found by a few trig-free Newton-like steps on
+// the evolute (Chatfield's method): accurate to a small fraction of a pixel everywhere, so a
+// feathered edge has the same width all around even on a thin ellipse.
+float ellipseSignedDistance(const glm::vec2 &p, const glm::vec2 &radii) {
+    if (!(radii.x > 0.f && radii.y > 0.f)) return kFarOutside;
+    const glm::vec2 q = glm::abs(p); // by symmetry, work in the first quadrant
+    const float a = radii.x, b = radii.y;
+    glm::vec2 t(0.70710678f); // (cos, sin) of the parameter of the nearest point
+    for (int iteration = 0; iteration < 4; ++iteration) {
+        const glm::vec2 onEllipse(a * t.x, b * t.y);
+        const glm::vec2 evolute((a * a - b * b) * t.x * t.x * t.x / a,
+                                (b * b - a * a) * t.y * t.y * t.y / b);
+        const float r = glm::length(onEllipse - evolute);
+        const float toPoint = glm::length(q - evolute);
+        const glm::vec2 towards = toPoint > 0.f ? (q - evolute) * (r / toPoint) : glm::vec2(0.f);
+        t = glm::clamp((towards + evolute) / radii, glm::vec2(0.f), glm::vec2(1.f));
+        const float norm = glm::length(t);
+        t = norm > 0.f ? t / norm : glm::vec2(1.f, 0.f);
+    }
+    const float distance = glm::length(q - glm::vec2(a * t.x, b * t.y));
+    const glm::vec2 scaled = q / radii;
+    return glm::dot(scaled, scaled) <= 1.f ? distance : -distance;
+}
+
+float segmentDistance(const glm::vec2 &p, const glm::vec2 &a, const glm::vec2 &b) {
+    const glm::vec2 ab = b - a;
+    const float lengthSquared = glm::dot(ab, ab);
+    const float t = lengthSquared > 0.f ? std::clamp(glm::dot(p - a, ab) / lengthSquared, 0.f, 1.f)
+                                        : 0.f;
+    return glm::length(p - (a + t * ab));
+}
+
+// Distance to the nearest edge, positive where a ray from p crosses the boundary an odd number
+// of times (the even-odd rule, so either winding and self-intersections behave alike).
+// `points` are normalised; `scale` takes them to pixels.
+float polygonSignedDistance(const glm::vec2 &p, const std::vector<glm::vec2> &points,
+                            const glm::vec2 &scale) {
+    if (points.size() < 2) return kFarOutside;
+    float distance = std::numeric_limits<float>::infinity();
+    bool inside = false;
+    for (size_t i = 0, j = points.size() - 1; i < points.size(); j = i++) {
+        const glm::vec2 a = points[j] * scale;
+        const glm::vec2 b = points[i] * scale;
+        distance = std::min(distance, segmentDistance(p, a, b));
+        if ((a.y > p.y) != (b.y > p.y)) {
+            const float crossingX = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+            if (p.x < crossingX) inside = !inside;
+        }
+    }
+    return inside ? distance : -distance;
+}
+
+} // namespace
+
+LensRegion::LensRegion() = default;
+
+LensRegion LensRegion::rectangle(const glm::vec2 &center, const glm::vec2 &size) {
+    LensRegion region;
+    region.m_shape = Shape::Rectangle;
+    region.m_center = center;
+    region.m_size = size;
+    return region;
+}
+
+LensRegion LensRegion::ellipse(const glm::vec2 &center, const glm::vec2 &size) {
+    LensRegion region = rectangle(center, size);
+    region.m_shape = Shape::Ellipse;
+    return region;
+}
+
+LensRegion LensRegion::polygon(std::vector<glm::vec2> points) {
+    LensRegion region;
+    region.m_shape = Shape::Polygon;
+    region.m_points = std::move(points);
+    return region;
+}
+
+glm::vec2 LensRegion::center() const {
+    if (m_shape != Shape::Polygon) return m_center;
+    const Bounds bounds = pointBounds(m_points);
+    return 0.5f * (bounds.lower + bounds.upper);
+}
+
+void LensRegion::setCenter(const glm::vec2 &center) {
+    if (m_shape != Shape::Polygon) {
+        m_center = center;
+        return;
+    }
+    const glm::vec2 offset = center - this->center();
+    for (glm::vec2 &p : m_points) p += offset;
+}
+
+glm::vec2 LensRegion::size() const {
+    if (m_shape != Shape::Polygon) return m_size;
+    const Bounds bounds = pointBounds(m_points);
+    return bounds.upper - bounds.lower;
+}
+
+void LensRegion::setSize(const glm::vec2 &size) {
+    if (m_shape != Shape::Polygon) {
+        m_size = size;
+        return;
+    }
+    const glm::vec2 oldSize = this->size();
+    const glm::vec2 pivot = center();
+    // A flat axis cannot be scaled to a size; it stays as it is.
+    const glm::vec2 scale(oldSize.x > 0.f ? size.x / oldSize.x : 1.f,
+                          oldSize.y > 0.f ? size.y / oldSize.y : 1.f);
+    for (glm::vec2 &p : m_points) p = pivot + (p - pivot) * scale;
+}
+
+float LensRegion::signedDistance(const glm::vec2 &pixel, int width, int height) const {
+    const glm::vec2 imageSize{float(width), float(height)};
+    switch (m_shape) {
+    case Shape::Rectangle:
+        return boxSignedDistance(pixel - m_center * imageSize, 0.5f * m_size * imageSize);
+    case Shape::Ellipse:
+        return ellipseSignedDistance(pixel - m_center * imageSize, 0.5f * m_size * imageSize);
+    case Shape::Polygon: return polygonSignedDistance(pixel, m_points, imageSize);
+    }
+    return kFarOutside;
+}
+
+float LensRegion::coverage(const glm::vec2 &pixel, int width, int height) const {
+    const float distance = signedDistance(pixel, width, height);
+    if (!(m_feather > 0.f)) return distance >= 0.f ? 1.f : 0.f;
+    if (!(distance > 0.f)) return 0.f; // also catches NaN
+    const float t = std::min(distance / m_feather, 1.f);
+    return t * t * (3.f - 2.f * t);
+}
+
+PixelRect LensRegion::pixelBounds(int width, int height) const {
+    Bounds bounds;
+    if (m_shape == Shape::Polygon) {
+        if (m_points.empty()) return {};
+        bounds = pointBounds(m_points);
+    } else {
+        bounds = {m_center - 0.5f * m_size, m_center + 0.5f * m_size};
+    }
+    const glm::vec2 imageSize{float(width), float(height)};
+    const float margin = 0.5f * std::max(m_outlineWidth, 0.f) + 1.f;
+    const glm::vec2 lower = bounds.lower * imageSize - margin;
+    const glm::vec2 upper = bounds.upper * imageSize + margin;
+    if (!isFinite(lower) || !isFinite(upper)) return {};
+    // Clamp in float before converting so far-off regions cannot overflow an int.
+    const auto toPixel = [](float value, int limit) {
+        return int(std::clamp(value, 0.f, float(limit)));
+    };
+    PixelRect rect;
+    rect.x0 = toPixel(std::floor(lower.x), width);
+    rect.y0 = toPixel(std::floor(lower.y), height);
+    rect.x1 = toPixel(std::ceil(upper.x), width);
+    rect.y1 = toPixel(std::ceil(upper.y), height);
+    return rect;
+}
+
+void LensRegion::validate() const {
+    const char *source = "lens region";
+    if (!std::isfinite(m_feather) || m_feather < 0.f)
+        throw Error(source, "feather must be a finite width ≥ 0 px, got " + std::to_string(m_feather));
+    if (!std::isfinite(m_outlineWidth) || m_outlineWidth < 0.f)
+        throw Error(source, "outline width must be a finite width ≥ 0 px, got " +
+                                std::to_string(m_outlineWidth));
+    if (!isFinite(m_outlineColor)) throw Error(source, "outline colour is not finite");
+    if (m_shape == Shape::Polygon) {
+        if (m_points.size() < 3)
+            throw Error(source, "a polygon needs at least 3 points, got " +
+                                    std::to_string(m_points.size()));
+        for (const glm::vec2 &p : m_points)
+            if (!isFinite(p)) throw Error(source, "a polygon point is not finite");
+        const glm::vec2 extent = size();
+        if (!(extent.x > 0.f && extent.y > 0.f))
+            throw Error(source, "the polygon's bounding box has zero width or height");
+        return;
+    }
+    if (!isFinite(m_center)) throw Error(source, "centre is not finite");
+    if (!isFinite(m_size) || !(m_size.x > 0.f && m_size.y > 0.f))
+        throw Error(source, "size must be finite and > 0, got " + std::to_string(m_size.x) + " x " +
+                                std::to_string(m_size.y));
+}
+
+} // namespace mvcl

@@ -1,0 +1,168 @@
+// mvcl-render with lenses: --lens, --lenses, --save-lenses, --list-lenses, and their errors.
+
+#include "apps/RenderCliRunner.h"
+
+#include <mvcl/view/ImageIO.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+using namespace mvcl::test;
+
+namespace {
+
+const char *const kSmall = " --size 96x72 --spp 1";
+
+fs::path assetPath(const std::string &name) { return fs::path(MVCL_TEST_DATA_DIR) / ".." / ".." / "assets" / "lenses" / name; }
+
+std::string readText(const fs::path &path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+long lineCount(const std::string &text) { return long(std::count(text.begin(), text.end(), '\n')); }
+
+} // namespace
+
+TEST(RenderLensCli, ListLensesShowsEveryLensWithItsPropertyTable) {
+    const CommandResult r = runRender("--list-lenses");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char *expected : {"layer:", "achromatic:", "shadow:", "property", "default", "range", "layers",
+                                 "distance", "amount", "casters", "strength", "tint", "rays", "scene units"})
+        EXPECT_NE(r.output.find(expected), std::string::npos) << expected << "\n" << r.output;
+}
+
+// A lens changes the pixels under it and nothing else.
+TEST(RenderLensCli, LensOnTheCommandLineChangesOnlyItsRegion) {
+    const fs::path plain = outDir() / "lens-plain.png";
+    const fs::path lensed = outDir() / "lens-cli.png";
+    fs::remove(lensed);
+    const CommandResult base = runRender(std::string("builtin:cube-in-cube") + kSmall + " -o " + plain.string());
+    ASSERT_EQ(base.exitCode, 0) << base.output;
+    const CommandResult r = runRender(std::string("builtin:cube-in-cube") + kSmall + " -o " + lensed.string() +
+                                      " --lens 'layer:shape=rectangle,center=[0.5,0.5],size=[0.5,0.5],layers=1-,label=core'");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("lens 0 layer 'core': 1,728 px"), std::string::npos) << r.output; // 48 × 36
+    EXPECT_NE(r.output.find("policies"), std::string::npos) << r.output;
+    ASSERT_TRUE(fs::exists(lensed));
+
+    const mvcl::Framebuffer a = mvcl::readImage(plain), b = mvcl::readImage(lensed);
+    ASSERT_EQ(a.width(), b.width());
+    int changedInside = 0, changedOutside = 0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            const bool inside = x >= 24 && x < 72 && y >= 18 && y < 54;
+            if (a.at(x, y) != b.at(x, y)) ++(inside ? changedInside : changedOutside);
+        }
+    EXPECT_GT(changedInside, 200); // the outer cube is gone under the lens
+    EXPECT_EQ(changedOutside, 0);
+}
+
+TEST(RenderLensCli, ShippedLensFilesRender) {
+    for (const char *name : {"cube-in-cube.json", "2CylinderEngine.json", "HRA_Female_Body.json"}) {
+        const fs::path out = outDir() / (fs::path(name).stem().string() + "-lenses.png");
+        fs::remove(out);
+        // No scene on the command line: the file names it (relative to the file).
+        const CommandResult r = runRender("--lenses " + quoted(assetPath(name).string()) + kSmall + " -o " + out.string());
+        EXPECT_EQ(r.exitCode, 0) << name << "\n" << r.output;
+        EXPECT_NE(r.output.find("lens 0 layer"), std::string::npos) << r.output;
+        EXPECT_TRUE(fs::exists(out)) << name;
+    }
+}
+
+// --lens adds on top of --lenses; --save-lenses writes the effective stack, which loads back to
+// the same stack (saving it again gives the same file).
+TEST(RenderLensCli, SavedStackReloadsToTheSameStack) {
+    const fs::path first = outDir() / "saved-1.json";
+    const fs::path second = outDir() / "saved-2.json";
+    const fs::path image = outDir() / "saved.png";
+    fs::remove(first);
+    fs::remove(second);
+    const CommandResult save = runRender("--lenses " + quoted(assetPath("cube-in-cube.json").string()) +
+                                         " --lens 'achromatic:amount=0.5,shape=polygon,points=[[0,0],[0.3,0],[0,0.3]]'" +
+                                         " --layer-rule '*inner*=1'" + kSmall + " -o " + image.string() +
+                                         " --save-lenses " + first.string());
+    ASSERT_EQ(save.exitCode, 0) << save.output;
+    EXPECT_NE(save.output.find("lens 3 achromatic"), std::string::npos) << save.output;
+    const std::string saved = readText(first);
+    for (const char *expected : {"\"scene\": \"builtin:cube-in-cube\"", "\"eye\"", "\"*inner*\"", "\"amount\": \"0.5\"",
+                                 "\"tinted shadows\"", "\"polygon\""})
+        EXPECT_NE(saved.find(expected), std::string::npos) << expected << "\n" << saved;
+
+    const CommandResult reload = runRender("--lenses " + first.string() + kSmall + " -o " + image.string() +
+                                           " --save-lenses " + second.string());
+    ASSERT_EQ(reload.exitCode, 0) << reload.output;
+    EXPECT_EQ(readText(second), saved);
+}
+
+TEST(RenderLensCli, BadLensSpecsExitTwoWithOneLineNamingTheProblem) {
+    const struct {
+        const char *spec;
+        const char *named;
+    } cases[] = {
+        {"layer:strenght=1", "strenght"},
+        {"nosuchlens:amount=1", "nosuchlens"},
+        {"layer:center=[0.5,0.5", "'[' without ']'"},
+        {"layer:size=[0,0.3]", "size"},
+        {"achromatic:amount=2", "amount"},
+    };
+    for (const auto &c : cases) {
+        const CommandResult r = runRender(std::string("builtin:onion --size 8x8 --lens '") + c.spec + "'");
+        EXPECT_EQ(r.exitCode, 2) << c.spec << "\n" << r.output;
+        EXPECT_EQ(lineCount(r.output), 1) << r.output;
+        EXPECT_EQ(r.output.rfind("mvcl-render: command line: --lens: ", 0), 0u) << r.output;
+        EXPECT_NE(r.output.find(c.named), std::string::npos) << r.output;
+    }
+    EXPECT_EQ(runRender("builtin:onion --lens").exitCode, 2);
+}
+
+TEST(RenderLensCli, BadLensFilesExitOneWithOneLineNamingTheFile) {
+    const fs::path file = outDir() / "bad-stack.json";
+    for (const std::string &json : {std::string(R"({"lenses": [{"type": "shadow", "properties": {"strenght": 1}}]})"),
+                                    std::string(R"({"lenses": [{"type": "nosuchlens"}]})"),
+                                    std::string(R"({"lenses": [)"), std::string(R"({"scene": "builtin:onion", "zoom": 2})")}) {
+        std::ofstream(file) << json;
+        const CommandResult r = runRender("builtin:onion --size 8x8 --lenses " + file.string());
+        EXPECT_EQ(r.exitCode, 1) << json << "\n" << r.output;
+        EXPECT_EQ(lineCount(r.output), 1) << r.output;
+        EXPECT_NE(r.output.find("bad-stack.json: "), std::string::npos) << r.output;
+    }
+    const CommandResult missing = runRender("--lenses /nonexistent/stack.json");
+    EXPECT_EQ(missing.exitCode, 1) << missing.output;
+    EXPECT_NE(missing.output.find("/nonexistent/stack.json"), std::string::npos) << missing.output;
+
+    std::ofstream(file) << R"({"lenses": []})";
+    const CommandResult noScene = runRender("--lenses " + file.string());
+    EXPECT_EQ(noScene.exitCode, 2) << noScene.output;
+    EXPECT_NE(noScene.output.find("no scene"), std::string::npos) << noScene.output;
+}
+
+TEST(RenderLensCli, UnwritableSaveLensesExitsThree) {
+    const CommandResult r = runRender("builtin:onion --size 8x8 --save-lenses /proc/forbidden/stack.json");
+    EXPECT_EQ(r.exitCode, 3) << r.output;
+    EXPECT_NE(r.output.find("/proc/forbidden/stack.json"), std::string::npos) << r.output;
+}
+
+// The file's camera may name one of the scene's cameras; --camera on the command line wins.
+TEST(RenderLensCli, LensFileCameraNamesASceneCamera) {
+    const fs::path file = outDir() / "duck-stack.json";
+    const fs::path out = outDir() / "duck-stack.png";
+    const std::string duck = dataPath("models/Duck/Duck.glb");
+    std::ofstream(file) << R"({"scene": ")" << duck << R"(", "camera": {"name": "3"}})";
+    const CommandResult bad = runRender("--lenses " + file.string() + kSmall + " -o " + out.string());
+    EXPECT_EQ(bad.exitCode, 1) << bad.output;
+    EXPECT_NE(bad.output.find("duck-stack.json: camera '3'"), std::string::npos) << bad.output;
+    const CommandResult overridden =
+        runRender("--lenses " + file.string() + " --camera 0" + kSmall + " -o " + out.string());
+    EXPECT_EQ(overridden.exitCode, 0) << overridden.output;
+    std::ofstream(file) << R"({"scene": ")" << duck << R"(", "camera": {"name": 0}})";
+    EXPECT_EQ(runRender("--lenses " + file.string() + kSmall + " -o " + out.string()).exitCode, 0);
+}
