@@ -26,7 +26,16 @@ void expectBoundsHoldEveryCoveredPixel(const LensRegion &region, int width, int 
     int covered = 0;
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            if (region.coverage(pixelCentre(x, y), width, height) <= 0.f) continue;
+            // rowSpan, the fast path of LensStack::compose, must agree with coverage().
+            const LensRegion::RowSpan span = region.rowSpan(y, width, height);
+            const float coverage = region.coverage(pixelCentre(x, y), width, height);
+            if (x >= span.innerX0 && x < span.innerX1) {
+                ASSERT_EQ(coverage, 1.f) << x << "," << y;
+            }
+            if (coverage > 0.f) {
+                ASSERT_TRUE(x >= span.x0 && x < span.x1) << x << "," << y;
+            }
+            if (coverage <= 0.f) continue;
             ++covered;
             ASSERT_TRUE(x >= bounds.x0 && x < bounds.x1 && y >= bounds.y0 && y < bounds.y1)
                 << "pixel " << x << "," << y << " outside bounds " << bounds.x0 << ".." << bounds.x1
@@ -222,6 +231,17 @@ TEST(LensRegion, PixelBoundsContainEveryCoveredPixel) {
     for (const auto &[width, height] : sizes)
         for (const LensRegion &region : regions) expectBoundsHoldEveryCoveredPixel(region, width, height);
     EXPECT_TRUE(LensRegion::ellipse({3.f, 3.f}, {0.5f, 0.5f}).pixelBounds(64, 64).isEmpty());
+}
+
+TEST(LensRegion, RowSpansLeaveOnlyTheEdgeToPerPixelCoverage) {
+    // The fast path must actually be taken: a large feathered ellipse or rectangle leaves only
+    // a thin band per row to coverage().
+    for (LensRegion region : {LensRegion::ellipse({0.5f, 0.5f}, {0.6f, 0.8f}),
+                              LensRegion::rectangle({0.5f, 0.5f}, {0.6f, 0.8f})}) {
+        region.setFeather(4.f);
+        const LensRegion::RowSpan span = region.rowSpan(100, 200, 200);
+        EXPECT_GT(span.innerX1 - span.innerX0, (span.x1 - span.x0) - 2 * (4 + 4)) << int(region.shape());
+    }
 }
 
 TEST(LensRegion, PixelBoundsGrowWithTheOutline) {

@@ -167,11 +167,57 @@ float LensRegion::signedDistance(const glm::vec2 &pixel, int width, int height) 
 }
 
 float LensRegion::coverage(const glm::vec2 &pixel, int width, int height) const {
+    if (m_shape == Shape::Ellipse) {
+        // Most pixels of an ellipse are far from its edge: the implicit equation settles them
+        // without the nearest-point iteration. A point at normalised radius r < 1 is at least
+        // (1 − r)·(smaller radius) inside, the gap between the ellipse and its copy scaled by r.
+        const glm::vec2 radii = 0.5f * m_size * glm::vec2(float(width), float(height));
+        const glm::vec2 scaled = glm::abs(pixel - m_center * glm::vec2(float(width), float(height))) / radii;
+        const float radiusSquared = glm::dot(scaled, scaled);
+        if (!(radiusSquared <= 1.f)) return 0.f;
+        if (!(m_feather > 0.f)) return 1.f;
+        if ((1.f - std::sqrt(radiusSquared)) * std::min(radii.x, radii.y) >= m_feather) return 1.f;
+    }
     const float distance = signedDistance(pixel, width, height);
     if (!(m_feather > 0.f)) return distance >= 0.f ? 1.f : 0.f;
     if (!(distance > 0.f)) return 0.f; // also catches NaN
     const float t = std::min(distance / m_feather, 1.f);
     return t * t * (3.f - 2.f * t);
+}
+
+LensRegion::RowSpan LensRegion::rowSpan(int y, int width, int height) const {
+    const PixelRect bounds = pixelBounds(width, height);
+    RowSpan span;
+    if (y < bounds.y0 || y >= bounds.y1) return span;
+    span.x0 = span.innerX0 = span.innerX1 = bounds.x0;
+    span.x1 = bounds.x1;
+    if (m_shape == Shape::Polygon) return span; // every pixel of the box goes to coverage()
+
+    // The fully covered part of the row: inside the shape shrunk by the feather, less a pixel
+    // of margin each side so that rounding never claims a pixel coverage() would not.
+    const glm::vec2 imageSize{float(width), float(height)};
+    const glm::vec2 c = m_center * imageSize;
+    const glm::vec2 half = 0.5f * m_size * imageSize;
+    const float feather = std::max(m_feather, 0.f);
+    const float dy = std::abs(float(y) + 0.5f - c.y);
+    float innerHalfWidth = -1.f;
+    if (m_shape == Shape::Rectangle) {
+        if (dy + feather + 1.f <= half.y) innerHalfWidth = half.x - feather - 1.f;
+    } else {
+        // Points inside the ellipse scaled by k lie at least (1 − k)·min radius inside.
+        const float k = 1.f - feather / std::min(half.x, half.y);
+        const float v = k > 0.f ? (dy + 1.f) / (half.y * k) : 2.f;
+        if (v < 1.f) innerHalfWidth = half.x * k * std::sqrt(1.f - v * v) - 1.f;
+    }
+    if (innerHalfWidth <= 0.f) return span;
+    // Pixel x is inside when its centre x + 0.5 lies in [c.x − w, c.x + w].
+    const int innerX0 = std::max(bounds.x0, int(std::ceil(c.x - innerHalfWidth - 0.5f)));
+    const int innerX1 = std::min(bounds.x1, int(std::floor(c.x + innerHalfWidth - 0.5f)) + 1);
+    if (innerX0 < innerX1) {
+        span.innerX0 = innerX0;
+        span.innerX1 = innerX1;
+    }
+    return span;
 }
 
 PixelRect LensRegion::pixelBounds(int width, int height) const {

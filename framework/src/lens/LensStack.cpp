@@ -102,10 +102,15 @@ PolicyMap LensStack::compose(const RayPolicy &base, int width, int height) const
     if (active.empty()) return map;
 
     std::unordered_map<uint64_t, uint16_t> policyOfSet{{0, 0}};
+    uint64_t lastSet = 0;
+    uint16_t lastPolicy = 0;
     auto policyFor = [&](uint64_t set) {
+        if (set == lastSet) return lastPolicy; // neighbouring pixels mostly share their set
         auto [it, inserted] = policyOfSet.try_emplace(set, 0);
         if (inserted) it->second = map.addPolicy(composeFromSnapshots(snapshots, base, set));
-        return it->second;
+        lastSet = set;
+        lastPolicy = it->second;
+        return lastPolicy;
     };
 
     // Rows at a time: only pixels inside some lens's bounds are visited.
@@ -116,11 +121,19 @@ PolicyMap LensStack::compose(const RayPolicy &base, int width, int height) const
         for (size_t k = 0; k < active.size(); ++k) {
             const PixelRect &r = bounds[k];
             if (y < r.y0 || y >= r.y1) continue;
-            const LensRegion &region = snapshots[size_t(active[k])]->region;
-            for (int x = r.x0; x < r.x1; ++x)
-                row[size_t(x)].add(active[k], region.coverage({float(x) + 0.5f, float(y) + 0.5f}, width, height));
-            rowX0 = std::min(rowX0, r.x0);
-            rowX1 = std::max(rowX1, r.x1);
+            const int lens = active[k];
+            const LensRegion &region = snapshots[size_t(lens)]->region;
+            const LensRegion::RowSpan span = region.rowSpan(y, width, height);
+            auto addCoverage = [&](int x) {
+                row[size_t(x)].add(lens, region.coverage({float(x) + 0.5f, float(y) + 0.5f}, width, height));
+            };
+            for (int x = span.x0; x < span.innerX0; ++x) addCoverage(x);
+            for (int x = span.innerX0; x < span.innerX1; ++x) row[size_t(x)].add(lens, 1.f);
+            for (int x = span.innerX1; x < span.x1; ++x) addCoverage(x);
+            if (span.x0 < span.x1) {
+                rowX0 = std::min(rowX0, span.x0);
+                rowX1 = std::max(rowX1, span.x1);
+            }
         }
         for (int x = rowX0; x < rowX1; ++x) {
             PixelCover &cover = row[size_t(x)];

@@ -58,6 +58,15 @@ public:
     /// Pixels that may have coverage > 0 (or lie under the outline), clipped to the image.
     PixelRect pixelBounds(int width, int height) const;
 
+    /// Row y of the image split for fast rasterisation: pixels outside [x0, x1) have coverage
+    /// 0, pixels in [innerX0, innerX1) have coverage exactly 1, the rest need coverage().
+    /// Conservative (a pixel may be left to coverage() that turns out 0 or 1); clipped to the
+    /// image; an empty row has x0 == x1.
+    struct RowSpan {
+        int x0 = 0, x1 = 0, innerX0 = 0, innerX1 = 0;
+    };
+    RowSpan rowSpan(int y, int width, int height) const;
+
     /// Throws mvcl::Error("lens region", problem) for non-finite values, size ≤ 0, fewer than
     /// 3 polygon points, negative feather or outline.
     void validate() const;
