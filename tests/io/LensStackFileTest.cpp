@@ -4,6 +4,8 @@
 #define MVCL_LENS_STATIC_ID every_type_test_lens
 #include <mvcl/lens/LensPlugin.h>
 
+#include "ErrorOf.h"
+
 #include <mvcl/core/Error.h>
 #include <mvcl/io/LensStackFile.h>
 #include <mvcl/lens/LensRegistry.h>
@@ -25,6 +27,7 @@
 
 namespace fs = std::filesystem;
 using namespace mvcl;
+using test::errorOf;
 
 namespace {
 
@@ -96,20 +99,6 @@ std::string readText(const fs::path &path) {
 }
 
 void writeText(const fs::path &path, const std::string &text) { std::ofstream(path, std::ios::binary) << text; }
-
-/// The message of the mvcl::Error `action` throws; fails the test when it throws nothing.
-std::string errorOf(const std::function<void()> &action) {
-    try {
-        action();
-    } catch (const Error &e) {
-        return e.what();
-    } catch (const std::exception &e) {
-        ADD_FAILURE() << "not an mvcl::Error: " << e.what();
-        return {};
-    }
-    ADD_FAILURE() << "no error thrown";
-    return {};
-}
 
 // --- random descriptions ---------------------------------------------------------------------
 

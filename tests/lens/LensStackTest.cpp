@@ -3,10 +3,9 @@
 #include <mvcl/lens/LensStack.h>
 
 #include "lens/FixedLens.h"
+#include "lens/LensConformanceSupport.h"
 
 #include <mvcl/core/Error.h>
-#include <mvcl/model/BuiltinScenes.h>
-#include <mvcl/tracer/Tracer.h>
 #include <mvcl/view/Renderer.h>
 
 #include <gtest/gtest.h>
@@ -173,8 +172,7 @@ TEST(LensStack, HoldsAtMostSixtyFourLenses) {
 }
 
 TEST(LensStack, CostsCountThePixelsAndRaysUnderEachLens) {
-    const Scene scene = makeBuiltinScene("cube-in-cube");
-    const Tracer tracer(scene);
+    const test::ConformanceScene &scene = test::conformanceScene();
     LensStack stack;
     stack.add(makeFixedLens(layerMaskContribution(layerBit(1)), LensRegion::rectangle({0.25f, 0.5f}, {0.5f, 1.f})));
     stack.add(makeFixedLens(colorScaleContribution(0.5f), LensRegion::rectangle({0.5f, 0.5f}, {0.5f, 1.f})));
@@ -185,7 +183,7 @@ TEST(LensStack, CostsCountThePixelsAndRaysUnderEachLens) {
     settings.threads = 2;
     const PolicyMap map = stack.compose(RayPolicy{}, settings.width, settings.height);
     Framebuffer image;
-    const RenderStats stats = Renderer(tracer).render(Camera::fromDesc(scene.cameras.front()), map, settings, image);
+    const RenderStats stats = Renderer(scene.tracer).render(scene.camera, map, settings, image);
     ASSERT_EQ(stats.perPolicy.size(), map.policies().size());
     uint64_t pixels = 0, rays = 0;
     for (const PolicyCost &c : stats.perPolicy) {

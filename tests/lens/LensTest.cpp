@@ -1,5 +1,7 @@
 #include <mvcl/lens/Lens.h>
 
+#include "ErrorOf.h"
+
 #include <mvcl/core/Error.h>
 #include <mvcl/model/LayerTable.h>
 
@@ -12,6 +14,7 @@
 #include <vector>
 
 using namespace mvcl;
+using test::errorOf;
 
 namespace {
 
@@ -62,16 +65,6 @@ protected:
         return {};
     }
 };
-
-template <typename Action> std::string errorOf(Action action) {
-    try {
-        action();
-    } catch (const Error &e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "expected an mvcl::Error";
-    return {};
-}
 
 } // namespace
 

@@ -1,6 +1,8 @@
 #include <mvcl/lens/PropertyDecl.h>
 #include <mvcl/lens/PropertyValues.h>
 
+#include "ErrorOf.h"
+
 #include <mvcl/core/Error.h>
 #include <mvcl/model/LayerTable.h>
 
@@ -12,19 +14,9 @@
 #include <string>
 
 using namespace mvcl;
+using test::errorOf;
 
 namespace {
-
-// The message of the mvcl::Error `parse` throws; fails the test if it does not throw one.
-template <typename Action> std::string errorOf(Action action) {
-    try {
-        action();
-    } catch (const Error &e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "expected an mvcl::Error";
-    return {};
-}
 
 void expectRoundTrip(const PropertyDecl &decl, const PropertyValue &value) {
     const std::string text = value.toString();
