@@ -31,7 +31,8 @@ protected:
         lens->commit();
         return lens;
     }
-    static const LensContribution &contribution(const std::shared_ptr<Lens> &lens) {
+    /// A copy: callers pass a temporary lens, and its snapshot dies with it.
+    static LensContribution contribution(const std::shared_ptr<Lens> &lens) {
         return lens->snapshot()->contribution;
     }
 
@@ -106,7 +107,7 @@ TEST_F(InTreeLensPluginsTest, ShadowLensModes) {
 }
 
 TEST_F(InTreeLensPluginsTest, ShadowLensCastersNarrowShadowRaysOnly) {
-    const LensContribution &c = contribution(lens("shadow", {{"casters", "1"}}));
+    const LensContribution c = contribution(lens("shadow", {{"casters", "1"}}));
     EXPECT_EQ(c.visibility[kShadow].layerMask, layerBit(1));
     EXPECT_EQ(c.visibility[kPrimary].layerMask, kAllLayers);
 }

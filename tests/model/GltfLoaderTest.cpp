@@ -1,3 +1,5 @@
+#include "GltfTestWriter.h"
+
 #include <mvcl/model/GltfLoader.h>
 
 #include <mvcl/core/Error.h>
@@ -17,100 +19,12 @@
 #include <vector>
 
 using namespace mvcl;
+using namespace mvcl::test;
 using nlohmann::json;
 
 namespace {
 
 const std::filesystem::path kModels = std::filesystem::path(MVCL_TEST_DATA_DIR) / "models";
-
-// ---------------------------------------------------------------------------------------------
-// A tiny glTF writer for hostile and corner-case files: one buffer embedded as a data URI.
-
-std::string base64(const std::vector<std::uint8_t> &data) {
-    static const char *kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    std::size_t i = 0;
-    for (; i + 2 < data.size(); i += 3) {
-        const std::uint32_t v = std::uint32_t(data[i]) << 16 | std::uint32_t(data[i + 1]) << 8 | data[i + 2];
-        for (int k = 3; k >= 0; --k) out += kAlphabet[(v >> (6 * k)) & 63];
-    }
-    if (i + 1 == data.size()) {
-        const std::uint32_t v = std::uint32_t(data[i]) << 16;
-        out += kAlphabet[(v >> 18) & 63];
-        out += kAlphabet[(v >> 12) & 63];
-        out += "==";
-    } else if (i + 2 == data.size()) {
-        const std::uint32_t v = std::uint32_t(data[i]) << 16 | std::uint32_t(data[i + 1]) << 8;
-        out += kAlphabet[(v >> 18) & 63];
-        out += kAlphabet[(v >> 12) & 63];
-        out += kAlphabet[(v >> 6) & 63];
-        out += '=';
-    }
-    return out;
-}
-
-struct GltfWriter {
-    std::vector<std::uint8_t> bin;
-    json doc = {{"asset", {{"version", "2.0"}}}};
-
-    template <typename T> std::size_t append(const std::vector<T> &values) {
-        while (bin.size() % 4) bin.push_back(0);
-        const std::size_t offset = bin.size();
-        bin.resize(offset + values.size() * sizeof(T));
-        std::memcpy(bin.data() + offset, values.data(), values.size() * sizeof(T));
-        return offset;
-    }
-    /// Adds a bufferView over `values` and returns its index.
-    template <typename T> int view(const std::vector<T> &values, int stride = 0) {
-        const std::size_t offset = append(values);
-        json v = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", values.size() * sizeof(T)}};
-        if (stride) v["byteStride"] = stride;
-        doc["bufferViews"].push_back(v);
-        return int(doc["bufferViews"].size()) - 1;
-    }
-    int accessor(int bufferView, int componentType, std::uint64_t count, const char *type) {
-        json a = {{"componentType", componentType}, {"count", count}, {"type", type}};
-        if (bufferView >= 0) a["bufferView"] = bufferView;
-        doc["accessors"].push_back(a);
-        return int(doc["accessors"].size()) - 1;
-    }
-    int positions(const std::vector<float> &xyz) { return accessor(view(xyz), 5126, xyz.size() / 3, "VEC3"); }
-    int indices16(const std::vector<std::uint16_t> &idx) { return accessor(view(idx), 5123, idx.size(), "SCALAR"); }
-    /// A mesh with one primitive; returns the mesh index.
-    int mesh(json primitive, const std::string &name = "") {
-        json m = {{"primitives", json::array({primitive})}};
-        if (!name.empty()) m["name"] = name;
-        doc["meshes"].push_back(m);
-        return int(doc["meshes"].size()) - 1;
-    }
-    int node(json n) {
-        doc["nodes"].push_back(n);
-        return int(doc["nodes"].size()) - 1;
-    }
-    void scene(std::vector<int> roots) { doc["scenes"] = json::array({{{"nodes", roots}}}); doc["scene"] = 0; }
-
-    std::string text() const {
-        json d = doc;
-        if (!bin.empty())
-            d["buffers"] = json::array(
-                {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}});
-        return d.dump();
-    }
-    Scene load(const GltfLoadOptions &options = {}) const {
-        const std::string t = text();
-        return loadGltfFromMemory({reinterpret_cast<const std::uint8_t *>(t.data()), t.size()}, "synthetic.gltf",
-                                  std::filesystem::temp_directory_path(), options);
-    }
-};
-
-/// One triangle in the XY plane, counter-clockwise seen from +Z.
-GltfWriter triangleFile(const std::string &meshName = "Tri") {
-    GltfWriter w;
-    const int pos = w.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
-    const int m = w.mesh({{"attributes", {{"POSITION", pos}}}}, meshName);
-    w.scene({w.node({{"mesh", m}, {"name", "TriNode"}})});
-    return w;
-}
 
 std::string loadError(const GltfWriter &w) {
     try {
@@ -268,254 +182,7 @@ TEST(GltfRealModels, KidneyNonUnitNormalIsFixedAndDuckCameraLoads) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Synthetic hostile files.
-
-TEST(GltfHostile, BufferViewOverrunByOneByte) {
-    GltfWriter w = triangleFile();
-    w.doc["bufferViews"][0]["byteLength"] = 37; // the buffer holds 36 bytes
-    const std::string e = loadError(w);
-    EXPECT_NE(e.find("synthetic.gltf"), std::string::npos) << e;
-    EXPECT_NE(e.find("1 bytes past the end of buffer 0"), std::string::npos) << e;
-}
-
-TEST(GltfHostile, AccessorOverrunByOneByte) {
-    GltfWriter w = triangleFile();
-    w.doc["accessors"][0]["byteOffset"] = 1;
-    const std::string e = loadError(w);
-    EXPECT_NE(e.find("accessor 0 (POSITION of mesh 0 'Tri') reads 1 bytes past the end of bufferView 0"),
-              std::string::npos)
-        << e;
-}
-
-TEST(GltfHostile, ByteOffsetNear2To64) {
-    GltfWriter w = triangleFile();
-    w.doc["accessors"][0]["byteOffset"] = std::numeric_limits<std::uint64_t>::max() - 8;
-    EXPECT_NE(loadError(w).find("accessor 0"), std::string::npos) << loadError(w);
-    GltfWriter v = triangleFile();
-    v.doc["bufferViews"][0]["byteOffset"] = std::numeric_limits<std::uint64_t>::max() - 8;
-    EXPECT_NE(loadError(v).find("bufferView 0"), std::string::npos) << loadError(v);
-}
-
-TEST(GltfHostile, CountZeroAndHuge) {
-    GltfWriter zero = triangleFile();
-    zero.doc["accessors"][0]["count"] = 0;
-    EXPECT_NE(loadError(zero).find("count 0"), std::string::npos) << loadError(zero);
-    GltfWriter huge = triangleFile();
-    huge.doc["accessors"][0]["count"] = 2147483647;
-    EXPECT_NE(loadError(huge).find("past the end of bufferView"), std::string::npos) << loadError(huge);
-    GltfWriter noView = triangleFile(); // no bufferView: zeros, but not 24 GB of them
-    noView.doc["accessors"][0].erase("bufferView");
-    noView.doc["accessors"][0]["count"] = 2147483647;
-    EXPECT_NE(loadError(noView).find("no bufferView"), std::string::npos) << loadError(noView);
-}
-
-TEST(GltfHostile, BadStride) {
-    GltfWriter odd = triangleFile();
-    odd.doc["bufferViews"][0]["byteStride"] = 6; // not a multiple of 4 (tinygltf rejects this one)
-    EXPECT_NE(loadError(odd).find("synthetic.gltf"), std::string::npos);
-    GltfWriter small = triangleFile();
-    small.doc["bufferViews"][0]["byteStride"] = 8; // smaller than a VEC3 of floats
-    EXPECT_NE(loadError(small).find("smaller than the element size"), std::string::npos) << loadError(small);
-    GltfWriter big = triangleFile();
-    big.doc["bufferViews"][0]["byteStride"] = 16; // 16·2 + 12 = 44 > 36
-    EXPECT_NE(loadError(big).find("past the end of bufferView"), std::string::npos) << loadError(big);
-}
-
-TEST(GltfHostile, IndexOutOfRangeAndRestartIndex) {
-    GltfWriter w;
-    const int pos = w.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
-    const int idx = w.indices16({0, 1, 3});
-    w.scene({w.node({{"mesh", w.mesh({{"attributes", {{"POSITION", pos}}}, {"indices", idx}}, "M")}})});
-    EXPECT_NE(loadError(w).find("index 2 is 3, but the primitive has only 3 vertices"), std::string::npos)
-        << loadError(w);
-
-    GltfWriter r;
-    const int pos2 = r.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
-    const int idx2 = r.indices16({0, 1, 65535});
-    r.scene({r.node({{"mesh", r.mesh({{"attributes", {{"POSITION", pos2}}}, {"indices", idx2}})}})});
-    EXPECT_NE(loadError(r).find("primitive-restart value 65535"), std::string::npos) << loadError(r);
-}
-
-TEST(GltfHostile, FloatIndicesRejected) {
-    GltfWriter w;
-    const int pos = w.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
-    const int idx = w.accessor(w.view(std::vector<float>{0, 1, 2}), 5126, 3, "SCALAR");
-    w.scene({w.node({{"mesh", w.mesh({{"attributes", {{"POSITION", pos}}}, {"indices", idx}})}})});
-    EXPECT_NE(loadError(w).find("not an unsigned integer SCALAR"), std::string::npos) << loadError(w);
-}
-
-TEST(GltfHostile, NonFinitePositionNamesMeshAndAccessor) {
-    GltfWriter w;
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    const int pos = w.positions({0, 0, 0, 1, nan, 0, 0, 1, 0});
-    w.scene({w.node({{"mesh", w.mesh({{"attributes", {{"POSITION", pos}}}}, "Cube")}})});
-    const std::string e = loadError(w);
-    EXPECT_NE(e.find("accessor 0 (POSITION of mesh 0 'Cube'): position 1"), std::string::npos) << e;
-    EXPECT_NE(e.find("not finite"), std::string::npos) << e;
-}
-
-TEST(GltfHostile, NodeWithTwoParents) {
-    GltfWriter w = triangleFile();
-    w.doc["nodes"][0]["children"] = {2};
-    w.node({{"children", {2}}});
-    w.node({{"mesh", 0}});
-    const std::string e = loadError(w);
-    EXPECT_NE(e.find("node 2 has two parents (node 0 'TriNode' and node 1)"), std::string::npos) << e;
-}
-
-TEST(GltfHostile, HundredThousandDeepNodeChainDoesNotOverflowTheStack) {
-    GltfWriter w = triangleFile();
-    constexpr int kDepth = 100000;
-    json nodes = json::array();
-    for (int i = 0; i < kDepth; ++i) {
-        json n = {{"translation", {0.001, 0.0, 0.0}}};
-        if (i + 1 < kDepth) n["children"] = {i + 1};
-        else n["mesh"] = 0;
-        nodes.push_back(n);
-    }
-    w.doc["nodes"] = nodes;
-    w.scene({0});
-    const Scene s = w.load();
-    ASSERT_EQ(s.triangleCount(), 1u);
-    const double x = double(s.bounds().min.x) + s.worldOrigin.x;
-    EXPECT_NEAR(x, 100.0, 1e-6); // composed in double: 10^5 · 0.001
-
-    // The same chain closed into a loop is a cycle.
-    w.doc["nodes"][kDepth - 1]["children"] = {0};
-    w.doc["scenes"][0]["nodes"] = json::array();
-    EXPECT_NE(loadError(w).find("cycle"), std::string::npos) << loadError(w);
-}
-
-TEST(GltfHostile, RequiredDracoRejectedByName) {
-    GltfWriter w = triangleFile();
-    w.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-    w.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
-    EXPECT_NE(loadError(w).find("KHR_draco_mesh_compression"), std::string::npos) << loadError(w);
-}
-
-TEST(GltfHostile, UriEscapesAndAbsolutePathsRejected) {
-    const auto withUri = [](const std::string &uri) {
-        GltfWriter w = triangleFile();
-        json d = json::parse(w.text());
-        d["buffers"][0]["uri"] = uri;
-        return d.dump();
-    };
-    const auto errorOf = [](const std::string &text) -> std::string {
-        try {
-            loadGltfFromMemory({reinterpret_cast<const std::uint8_t *>(text.data()), text.size()}, "escape.gltf",
-                               std::filesystem::temp_directory_path());
-        } catch (const Error &e) {
-            return e.what();
-        }
-        return "(loaded)";
-    };
-    EXPECT_NE(errorOf(withUri("../secret.bin")).find("leaves the asset's folder"), std::string::npos);
-    EXPECT_NE(errorOf(withUri("sub/../../secret.bin")).find("leaves the asset's folder"), std::string::npos);
-    EXPECT_NE(errorOf(withUri("%2e%2e/secret.bin")).find("leaves the asset's folder"), std::string::npos);
-    EXPECT_NE(errorOf(withUri("/etc/passwd")).find("absolute path"), std::string::npos);
-    EXPECT_NE(errorOf(withUri("file:///etc/passwd")).find("escape.gltf"), std::string::npos);
-    EXPECT_NE(errorOf(withUri("C:\\Windows\\win.ini")).find("absolute path"), std::string::npos);
-}
-
-TEST(GltfHostile, ExternalBufferInsideTheFolderLoads) {
-    const auto dir = std::filesystem::temp_directory_path() / "mvcl_gltf_external";
-    std::filesystem::create_directories(dir / "sub");
-    GltfWriter w = triangleFile();
-    {
-        std::ofstream bin(dir / "sub" / "tri.bin", std::ios::binary);
-        bin.write(reinterpret_cast<const char *>(w.bin.data()), std::streamsize(w.bin.size()));
-    }
-    json d = json::parse(w.text());
-    d["buffers"][0]["uri"] = "sub/tri.bin";
-    {
-        std::ofstream out(dir / "tri.gltf");
-        out << d.dump();
-    }
-    EXPECT_EQ(loadGltf(dir / "tri.gltf").triangleCount(), 1u);
-    d["buffers"][0]["uri"] = "sub/missing.bin";
-    {
-        std::ofstream out(dir / "missing.gltf");
-        out << d.dump();
-    }
-    EXPECT_THROW(loadGltf(dir / "missing.gltf"), Error);
-    std::filesystem::remove_all(dir);
-}
-
-TEST(GltfHostile, DeepJsonAndOversizeAndGarbageRejected) {
-    GltfWriter w = triangleFile();
-    std::string deep = w.text();
-    deep.insert(deep.size() - 1, ",\"extras\":" + std::string(100000, '[') + std::string(100000, ']'));
-    EXPECT_THROW(loadGltfFromMemory({reinterpret_cast<const std::uint8_t *>(deep.data()), deep.size()}, "deep.gltf",
-                                    ""),
-                 Error);
-    GltfLoadOptions small;
-    small.maxFileBytes = 16;
-    EXPECT_THROW(w.load(small), Error);
-    const std::string garbage = "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": 7";
-    EXPECT_THROW(loadGltfFromMemory({reinterpret_cast<const std::uint8_t *>(garbage.data()), garbage.size()},
-                                    "garbage.gltf", ""),
-                 Error);
-    EXPECT_THROW(loadGltf(kModels / "does-not-exist.glb"), Error);
-}
-
-TEST(GltfHostile, GlbFromMemoryAndTruncatedGlb) {
-    std::ifstream in(kModels / "Box/Box.glb", std::ios::binary);
-    std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    ASSERT_GT(bytes.size(), 100u);
-    EXPECT_EQ(loadGltfFromMemory(bytes, "Box.glb", "").triangleCount(), 12u);
-    for (std::size_t cut : {bytes.size() - 1, bytes.size() - 9, std::size_t(40), std::size_t(19), std::size_t(4)}) {
-        std::vector<std::uint8_t> truncated(bytes.begin(), bytes.begin() + std::ptrdiff_t(cut));
-        EXPECT_THROW(loadGltfFromMemory(truncated, "Box.glb", ""), Error) << "cut at " << cut;
-    }
-    // The BIN chunk length claims 8 more bytes than there are (tinygltf 2.7 would read them).
-    std::vector<std::uint8_t> lying = bytes;
-    std::uint32_t jsonLength;
-    std::memcpy(&jsonLength, lying.data() + 12, 4);
-    std::uint32_t binLength;
-    std::memcpy(&binLength, lying.data() + 20 + jsonLength, 4);
-    binLength += 8;
-    std::memcpy(lying.data() + 20 + jsonLength, &binLength, 4);
-    EXPECT_THROW(loadGltfFromMemory(lying, "Box.glb", ""), Error);
-}
-
-// ---------------------------------------------------------------------------------------------
 // Geometry processing.
-
-TEST(GltfGeometry, TriangleStripAndFanKeepWinding) {
-    // A zig-zag strip in the XY plane: every triangle must face +Z.
-    GltfWriter strip;
-    const int sp = strip.positions({0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0, 2, 0, 0, 2, 1, 0});
-    // Positions 0:(0,0) 1:(0,1) 2:(1,0) 3:(1,1) 4:(2,0) 5:(2,1); the strip 1 0 3 2 5 4 starts CCW.
-    const int si = strip.indices16({1, 0, 3, 2, 5, 4});
-    strip.scene({strip.node({{"mesh", strip.mesh({{"attributes", {{"POSITION", sp}}}, {"indices", si}, {"mode", 5}})}})});
-    const Scene s = strip.load();
-    ASSERT_EQ(s.triangleCount(), 4u);
-    for (std::size_t t = 0; t < 4; ++t) EXPECT_GT(faceNormal(s.meshes[0], t).z, 0.f) << "strip triangle " << t;
-
-    GltfWriter fan; // centre then a CCW ring
-    const int fp = fan.positions({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, -1, 1, 0});
-    fan.scene({fan.node({{"mesh", fan.mesh({{"attributes", {{"POSITION", fp}}}, {"mode", 6}})}})});
-    const Scene f = fan.load();
-    ASSERT_EQ(f.triangleCount(), 3u);
-    for (std::size_t t = 0; t < 3; ++t) EXPECT_GT(faceNormal(f.meshes[0], t).z, 0.f) << "fan triangle " << t;
-}
-
-TEST(GltfGeometry, PointsAndLinesSkippedWithWarning) {
-    GltfWriter w;
-    const int pos = w.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
-    json mesh = {{"primitives",
-                  {{{"attributes", {{"POSITION", pos}}}, {"mode", 0}},
-                   {{"attributes", {{"POSITION", pos}}}, {"mode", 1}},
-                   {{"attributes", {{"POSITION", pos}}}}}}};
-    w.doc["meshes"].push_back(mesh);
-    w.scene({w.node({{"mesh", 0}})});
-    const Scene s = w.load();
-    EXPECT_EQ(s.triangleCount(), 1u);
-    EXPECT_EQ(s.report.primitivesSkipped, 2u);
-    bool warned = false;
-    for (const std::string &msg : s.report.warnings) warned |= msg.find("POINTS") != std::string::npos;
-    EXPECT_TRUE(warned);
-}
 
 TEST(GltfGeometry, NegativeScaleFlipsWinding) {
     GltfWriter w;
@@ -532,17 +199,12 @@ TEST(GltfGeometry, NegativeScaleFlipsWinding) {
     }
 }
 
-TEST(GltfGeometry, ZeroScaleInstanceDroppedAndNonFiniteTransformRejected) {
+TEST(GltfGeometry, ZeroScaleInstanceDroppedWithWarning) {
     GltfWriter w = triangleFile();
     w.doc["nodes"][0]["scale"] = {0.0, 1.0, 1.0};
     const Scene s = w.load();
     EXPECT_EQ(s.triangleCount(), 0u);
     EXPECT_FALSE(s.report.warnings.empty());
-    GltfWriter big = triangleFile(); // finite numbers whose product overflows
-    big.doc["nodes"][0]["scale"] = {1e300, 1e300, 1e300};
-    big.doc["nodes"][0]["children"] = {1};
-    big.node({{"scale", {1e300, 1e300, 1e300}}, {"mesh", 0}});
-    EXPECT_NE(loadError(big).find("non-finite"), std::string::npos) << loadError(big);
 }
 
 TEST(GltfGeometry, NormalsNormalisedZeroNormalsAndDegenerateTriangles) {
@@ -558,26 +220,6 @@ TEST(GltfGeometry, NormalsNormalisedZeroNormalsAndDegenerateTriangles) {
     const TriangleMesh &m = s.meshes[0];
     for (const glm::vec3 &n : m.normals) EXPECT_NEAR(glm::length(n), 1.f, 1e-6f);
     EXPECT_NEAR(m.normals[1].z, 1.f, 1e-6f); // the zero normal took the face normal
-}
-
-TEST(GltfGeometry, SparseAccessorApplied) {
-    GltfWriter w;
-    const int base = w.view(std::vector<float>{0, 0, 0, 9, 9, 9, 0, 1, 0});
-    const int sparseIdx = w.view(std::vector<std::uint16_t>{1, 0}); // index 1 (padded)
-    const int sparseVal = w.view(std::vector<float>{1, 0, 0});
-    int acc = w.accessor(base, 5126, 3, "VEC3");
-    w.doc["accessors"][acc]["sparse"] = {{"count", 1},
-                                         {"indices", {{"bufferView", sparseIdx}, {"componentType", 5123}}},
-                                         {"values", {{"bufferView", sparseVal}}}};
-    w.scene({w.node({{"mesh", w.mesh({{"attributes", {{"POSITION", acc}}}})}})});
-    const Scene s = w.load();
-    ASSERT_EQ(s.triangleCount(), 1u);
-    const glm::dvec3 p1 = glm::dvec3(s.meshes[0].positions[1]) + s.worldOrigin;
-    EXPECT_NEAR(p1.x, 1.0, 1e-6);
-    EXPECT_NEAR(p1.y, 0.0, 1e-6);
-
-    w.doc["accessors"][acc]["sparse"]["count"] = 4; // more than the accessor's count
-    EXPECT_NE(loadError(w).find("sparse"), std::string::npos) << loadError(w);
 }
 
 TEST(GltfGeometry, RecentredInDoubleFarFromOrigin) {

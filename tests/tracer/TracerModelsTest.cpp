@@ -51,9 +51,9 @@ TEST_P(TracerModels, BvhMatchesBruteForce) {
         int hits = 0;
         const int kRays = 600;
         for (int i = 0; i < kRays; ++i) {
-            const glm::vec3 target = b.min + glm::vec3(uni(rng), uni(rng), uni(rng)) * b.extent();
+            const glm::vec3 target = b.min + glm::vec3{uni(rng), uni(rng), uni(rng)} * b.extent();
             glm::vec3 o;
-            if (i % 3 == 2) o = b.min + glm::vec3(uni(rng), uni(rng), uni(rng)) * b.extent();
+            if (i % 3 == 2) o = b.min + glm::vec3{uni(rng), uni(rng), uni(rng)} * b.extent();
             else o = c + 2.f * r * glm::normalize(glm::vec3(n(rng), n(rng), n(rng)));
             const Ray ray{o, glm::normalize(target - o)};
             RayQuery q;

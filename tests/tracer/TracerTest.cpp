@@ -25,7 +25,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 glm::vec3 randomUnit(std::mt19937 &rng) {
     std::normal_distribution<float> n(0.f, 1.f);
     for (;;) {
-        const glm::vec3 v(n(rng), n(rng), n(rng));
+        const glm::vec3 v{n(rng), n(rng), n(rng)};
         const float len = glm::length(v);
         if (len > 1e-3f) return v / len;
     }
@@ -43,7 +43,7 @@ Scene makeSoup(int triangles, uint32_t seed) {
         mesh.name = "soup" + std::to_string(layer);
         mesh.layer = layer;
         for (int i = 0; i < triangles / 4; ++i) {
-            const glm::vec3 c(pos(rng), pos(rng), pos(rng));
+            const glm::vec3 c{pos(rng), pos(rng), pos(rng)};
             const uint32_t base = uint32_t(mesh.positions.size());
             const int kind = i % 8;
             if (kind == 0 && i > 0) {
@@ -65,7 +65,7 @@ Scene makeSoup(int triangles, uint32_t seed) {
                 }
             } else {
                 for (int k = 0; k < 3; ++k)
-                    mesh.positions.push_back(c + glm::vec3(small(rng), small(rng), small(rng)));
+                    mesh.positions.push_back(c + glm::vec3{small(rng), small(rng), small(rng)});
             }
             mesh.indices.push_back({base, base + 1, base + 2});
         }
@@ -128,7 +128,7 @@ RayQuery randomQuery(std::mt19937 &rng) {
         cv.shape = ClipVolume::Shape(coin(rng) % 3);
         cv.keep = coin(rng) % 2 ? ClipVolume::Keep::Inside : ClipVolume::Keep::Outside;
         cv.a = {pos(rng), pos(rng), pos(rng)};
-        cv.b = cv.a + glm::vec3(uni(rng), uni(rng), uni(rng));
+        cv.b = cv.a + glm::vec3{uni(rng), uni(rng), uni(rng)};
         cv.radius = uni(rng);
         if (cv.shape == ClipVolume::Shape::HalfSpace) cv.a = randomUnit(rng);
     }
@@ -375,7 +375,11 @@ TEST(Tracer, InvalidRaysMiss) {
     const Scene scene = makeSoup(400, 9);
     const Tracer tracer(scene);
     const float nan = std::numeric_limits<float>::quiet_NaN();
-    const Ray good{{0.f, 0.f, 5.f}, {0.f, 0.f, -1.f}};
+    // The valid control ray is aimed at a triangle's centroid, so it hits whatever the soup.
+    const TriangleMesh &mesh = scene.meshes.front();
+    const glm::uvec3 first = mesh.indices.front();
+    const glm::vec3 centroid = (mesh.positions[first.x] + mesh.positions[first.y] + mesh.positions[first.z]) / 3.f;
+    const Ray good{{0.f, 0.f, 5.f}, centroid - glm::vec3(0.f, 0.f, 5.f)};
     Hit h;
     ASSERT_TRUE(tracer.closestHit(good, {}, h));
     std::vector<Ray> bad = {
@@ -451,7 +455,7 @@ TEST(Tracer, WatertightThroughTheBvh) {
         std::uniform_real_distribution<double> inside(-0.5, 0.5);
         int leaks = 0;
         for (int i = 0; i < 20000; ++i) {
-            const glm::vec3 o(center + glm::dvec3(inside(rng), inside(rng), inside(rng)));
+            const glm::vec3 o(center + glm::dvec3{inside(rng), inside(rng), inside(rng)});
             const Ray ray{o, mesh.positions[pick(rng)] - o};
             if (!tracer.anyHit(ray, {})) ++leaks;
             Hit h;
@@ -519,7 +523,7 @@ TEST(Tracer, SpawnedRaysDoNotReintersect) {
     int spawned = 0, reHits = 0;
     for (int s = 0; s < 500; ++s) {
         const float scale = std::pow(10.f, expo(rng));
-        const glm::vec3 shift = scale * glm::vec3(uni(rng), uni(rng), uni(rng)) * 4.f;
+        const glm::vec3 shift = scale * glm::vec3{uni(rng), uni(rng), uni(rng)} * 4.f;
         Scene scene;
         if (s % 5 == 4) {
             Sphere sp;
@@ -529,7 +533,7 @@ TEST(Tracer, SpawnedRaysDoNotReintersect) {
         } else {
             TriangleMesh mesh;
             for (int k = 0; k < 3; ++k)
-                mesh.positions.push_back(shift + scale * glm::vec3(uni(rng), uni(rng), uni(rng)));
+                mesh.positions.push_back(shift + scale * glm::vec3{uni(rng), uni(rng), uni(rng)});
             mesh.indices = {{0, 1, 2}};
             scene.meshes.push_back(mesh);
         }

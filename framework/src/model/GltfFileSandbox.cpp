@@ -64,6 +64,13 @@ std::string GltfFileSandbox::resolve(const std::string &uri) {
         refuse(uri, "is an absolute path; external files must lie in the asset's folder");
         return {};
     }
+    // tinygltf decodes base64 data URIs itself; any other "data:" reaching us is one it could
+    // not decode, and would otherwise be reported as a missing file of that name.
+    if (rel.rfind("data:", 0) == 0) {
+        refuse(uri, "is a data URI tinygltf cannot decode (only base64 application/octet-stream or "
+                    "application/gltf-buffer buffers are supported)");
+        return {};
+    }
     if (rel.find("://") != std::string::npos || rel.rfind("file:", 0) == 0) {
         refuse(uri, "is a URL; only data URIs and relative paths are allowed");
         return {};

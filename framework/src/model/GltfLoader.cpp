@@ -74,6 +74,9 @@ std::span<const std::uint8_t> checkGlb(std::span<const std::uint8_t> bytes, cons
     if (readLe32(bytes.data() + 16) != 0x4E4F534Au) throw Error(source, "GLB first chunk is not JSON");
     if (jsonLength == 0 || 20 + jsonLength > length)
         throw Error(source, "GLB JSON chunk length " + std::to_string(jsonLength) + " does not fit in the file");
+    // glTF §4.4.3.1: chunks start and end on 4-byte boundaries; the BIN data is read in place.
+    if (jsonLength % 4 != 0)
+        throw Error(source, "GLB JSON chunk length " + std::to_string(jsonLength) + " is not a multiple of 4");
     const std::uint64_t binStart = 20 + jsonLength;
     if (binStart < length) {
         if (binStart + 8 > length) throw Error(source, "GLB BIN chunk header is truncated");
@@ -82,6 +85,8 @@ std::span<const std::uint8_t> checkGlb(std::span<const std::uint8_t> bytes, cons
             throw Error(source, "GLB BIN chunk (" + std::to_string(binLength) + " bytes) runs past the end of the file");
         if (readLe32(bytes.data() + binStart + 4) != 0x004E4942u)
             throw Error(source, "GLB second chunk is not BIN");
+        if (binLength % 4 != 0)
+            throw Error(source, "GLB BIN chunk length " + std::to_string(binLength) + " is not a multiple of 4");
     }
     return bytes.subspan(20, std::size_t(jsonLength));
 }

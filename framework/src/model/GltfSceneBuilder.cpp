@@ -20,8 +20,11 @@ namespace {
 constexpr std::size_t kMaxSceneTriangles = std::size_t(1) << 27;
 
 /// A normal whose length is off by more than this is counted as "fixed" in the report (all
-/// normals are renormalised in double anyway).
+/// normals are renormalised in double anyway); a quaternion that far off gets a warning.
 constexpr double kUnitTolerance = 1e-3;
+
+/// Matrix columns whose cosine exceeds this count as sheared (float-rounded exports stay below).
+constexpr double kOrthogonalityTolerance = 1e-4;
 
 const char *modeName(int mode) {
     switch (mode) {
@@ -131,7 +134,17 @@ glm::dmat4 GltfSceneBuilder::localTransform(int node) {
     if (n.matrix.size() == 16) {
         if (!n.translation.empty() || !n.rotation.empty() || !n.scale.empty())
             m_context.warn(m_context.describeNode(node) + " has both matrix and TRS; the matrix is used");
-        return glm::make_mat4(n.matrix.data()); // both column-major
+        const glm::dmat4 m = glm::make_mat4(n.matrix.data()); // both column-major
+        // Orthogonal columns ⇔ rotation·scale; anything else shears. It renders correctly as an
+        // affine map, but glTF forbids it, so the user should know the exporter misbehaved.
+        const auto orthogonal = [&m](int a, int b) {
+            const glm::dvec3 ca(m[a]), cb(m[b]);
+            return std::abs(glm::dot(ca, cb)) <= kOrthogonalityTolerance * glm::length(ca) * glm::length(cb);
+        };
+        if (!orthogonal(0, 1) || !orthogonal(0, 2) || !orthogonal(1, 2))
+            m_context.warn(m_context.describeNode(node) +
+                           " matrix shears (it is not translation·rotation·scale); used as given");
+        return m;
     }
     glm::dmat4 t(1.0), r(1.0), s(1.0);
     if (n.translation.size() == 3) t[3] = glm::dvec4(n.translation[0], n.translation[1], n.translation[2], 1.0);
@@ -139,6 +152,9 @@ glm::dmat4 GltfSceneBuilder::localTransform(int node) {
         glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]); // glTF: x, y, z, w
         const double len = glm::length(q);
         if (!(len > 0.0)) m_context.fail(m_context.describeNode(node) + " has a zero rotation quaternion");
+        if (std::abs(len - 1.0) > kUnitTolerance)
+            m_context.warn(m_context.describeNode(node) + " rotation quaternion has length " + std::to_string(len) +
+                           "; normalised");
         r = glm::mat4_cast(q / len);
     }
     if (n.scale.size() == 3) s = glm::scale(glm::dmat4(1.0), glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));

@@ -328,6 +328,15 @@ void GltfValidator::validateNodes() {
             if (!allFinite(v)) m_context.fail(name + " " + what + " contains a non-finite number");
         };
         checkVector(node.matrix, 16, "matrix");
+        // Column-major: elements 3, 7, 11, 15 are the bottom row. Anything but (0, 0, 0, 1) is a
+        // projective matrix, which no translation·rotation·scale can express (glTF §3.5.3).
+        if (node.matrix.size() == 16 &&
+            (node.matrix[3] != 0.0 || node.matrix[7] != 0.0 || node.matrix[11] != 0.0 || node.matrix[15] != 1.0))
+            m_context.fail(name + " matrix has bottom row (" + std::to_string(node.matrix[3]) + ", " +
+                           std::to_string(node.matrix[7]) + ", " + std::to_string(node.matrix[11]) + ", " +
+                           std::to_string(node.matrix[15]) +
+                           "), not (0, 0, 0, 1); glTF node matrices must decompose into translation, rotation "
+                           "and scale");
         checkVector(node.translation, 3, "translation");
         checkVector(node.rotation, 4, "rotation");
         checkVector(node.scale, 3, "scale");

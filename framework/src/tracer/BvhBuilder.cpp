@@ -202,11 +202,16 @@ struct Binner {
         // min(b, nBins − 1) with SSE2 compares (pminsd is SSE4.1).
         const __m128i last = _mm_set1_epi32(nBins - 1);
         const __m128i over = _mm_cmpgt_epi32(b, last);
-        const __m128i clamped = _mm_or_si128(_mm_and_si128(over, last), _mm_andnot_si128(over, b));
+        __m128i clamped = _mm_or_si128(_mm_and_si128(over, last), _mm_andnot_si128(over, b));
+        // max(b, 0): on an axis whose extent overflows (coordinates near ±3.4e38) scale is 0 but
+        // c − cmin can be ∞, and ∞·0 = NaN converts to INT_MIN: without this, a negative bin
+        // index (catalogue case 13, garbage geometry, crashed here). Such an axis is never split.
+        clamped = _mm_andnot_si128(_mm_cmpgt_epi32(_mm_setzero_si128(), clamped), clamped);
         _mm_storeu_si128(reinterpret_cast<__m128i *>(out), clamped);
 #else
         for (int axis = 0; axis < 3; ++axis) {
-            const int b = int((p.c[axis] - cmin[axis]) * scale[axis]);
+            const float f = (p.c[axis] - cmin[axis]) * scale[axis];
+            const int b = f >= 1.f ? int(f) : 0; // NaN (∞·0 on an overflowing axis) → bin 0
             out[axis] = b < nBins - 1 ? b : nBins - 1;
         }
 #endif

@@ -446,7 +446,11 @@ SurfaceInteraction Tracer::interaction(const Ray &ray, const Hit &hit) const {
         const float b1 = hit.u, b2 = hit.v, b0 = 1.f - b1 - b2;
         // From barycentrics, not o + t·d: the error then scales with the vertices, not with the
         // distance travelled (pbrt-v4 §6.8.5).
-        const glm::vec3 q0 = b0 * p0, q1 = b1 * p1, q2 = b2 * p2;
+        // Each product rounded on its own (unfused): hit points must not depend on FMA contraction.
+        const auto unfusedProduct = [](float b, const glm::vec3 &p) {
+            return glm::vec3(mulUnfused(b, p.x), mulUnfused(b, p.y), mulUnfused(b, p.z));
+        };
+        const glm::vec3 q0 = unfusedProduct(b0, p0), q1 = unfusedProduct(b1, p1), q2 = unfusedProduct(b2, p2);
         si.position = q0 + q1 + q2;
         si.positionError = gamma(7) * (glm::abs(q0) + glm::abs(q1) + glm::abs(q2));
         const glm::dvec3 e1 = glm::dvec3(p1) - glm::dvec3(p0);

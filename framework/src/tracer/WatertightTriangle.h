@@ -31,21 +31,23 @@ inline bool watertightIntersect(const WatertightRay &r, const glm::vec3 &p0, con
     // Translate to the ray origin, permute so the ray's dominant axis is z, shear so the ray
     // becomes +z. Vertices are transformed independently of the triangle, so a vertex or edge
     // shared by two triangles gets bit-identical transformed values in both.
+    // Every product that is later added to goes through mulUnfused(): with FMA contraction the
+    // results would depend on the compiler and its flags (FloatBits.h).
     const float p0z = p0[r.kz] - r.origin[r.kz];
     const float p1z = p1[r.kz] - r.origin[r.kz];
     const float p2z = p2[r.kz] - r.origin[r.kz];
-    const float p0x = (p0[r.kx] - r.origin[r.kx]) + r.sx * p0z;
-    const float p0y = (p0[r.ky] - r.origin[r.ky]) + r.sy * p0z;
-    const float p1x = (p1[r.kx] - r.origin[r.kx]) + r.sx * p1z;
-    const float p1y = (p1[r.ky] - r.origin[r.ky]) + r.sy * p1z;
-    const float p2x = (p2[r.kx] - r.origin[r.kx]) + r.sx * p2z;
-    const float p2y = (p2[r.ky] - r.origin[r.ky]) + r.sy * p2z;
+    const float p0x = (p0[r.kx] - r.origin[r.kx]) + mulUnfused(r.sx, p0z);
+    const float p0y = (p0[r.ky] - r.origin[r.ky]) + mulUnfused(r.sy, p0z);
+    const float p1x = (p1[r.kx] - r.origin[r.kx]) + mulUnfused(r.sx, p1z);
+    const float p1y = (p1[r.ky] - r.origin[r.ky]) + mulUnfused(r.sy, p1z);
+    const float p2x = (p2[r.kx] - r.origin[r.kx]) + mulUnfused(r.sx, p2z);
+    const float p2y = (p2[r.ky] - r.origin[r.ky]) + mulUnfused(r.sy, p2z);
 
-    // 2D edge functions. a·b − c·d without FMA contraction (-ffp-contract=off) is exactly
-    // antisymmetric, so an edge shared with opposite winding gets exactly the negated value.
-    float e0 = p1x * p2y - p1y * p2x;
-    float e1 = p2x * p0y - p2y * p0x;
-    float e2 = p0x * p1y - p0y * p1x;
+    // 2D edge functions. a·b − c·d without FMA contraction is exactly antisymmetric, so an edge
+    // shared with opposite winding gets exactly the negated value.
+    float e0 = mulUnfused(p1x, p2y) - mulUnfused(p1y, p2x);
+    float e1 = mulUnfused(p2x, p0y) - mulUnfused(p2y, p0x);
+    float e2 = mulUnfused(p0x, p1y) - mulUnfused(p0y, p1x);
     if (e0 == 0.f || e1 == 0.f || e2 == 0.f) {
         // The ray passes (within float precision) through an edge or vertex: decide the sign
         // exactly. Products of floats are exact in double, so a zero here is a true zero.
@@ -60,7 +62,7 @@ inline bool watertightIntersect(const WatertightRay &r, const glm::vec3 &p0, con
     const float z0 = r.sz * p0z;
     const float z1 = r.sz * p1z;
     const float z2 = r.sz * p2z;
-    const float tScaled = e0 * z0 + e1 * z1 + e2 * z2;
+    const float tScaled = mulUnfused(e0, z0) + mulUnfused(e1, z1) + mulUnfused(e2, z2);
     if (det < 0.f && (tScaled >= 0.f || tScaled < tMax * kEarlyRejectSlack * det)) return false;
     if (det > 0.f && (tScaled <= 0.f || tScaled > tMax * kEarlyRejectSlack * det)) return false;
 
@@ -74,12 +76,19 @@ inline bool watertightIntersect(const WatertightRay &r, const glm::vec3 &p0, con
     const float deltaZ = gamma(3) * maxZt;
     const float maxXt = max3(std::fabs(p0x), std::fabs(p1x), std::fabs(p2x));
     const float maxYt = max3(std::fabs(p0y), std::fabs(p1y), std::fabs(p2y));
-    const float deltaX = gamma(5) * (maxXt + maxZt);
-    const float deltaY = gamma(5) * (maxYt + maxZt);
-    const float deltaE = 2.f * (gamma(2) * maxXt * maxYt + deltaY * maxXt + deltaX * maxYt);
+    // The shear adds sx·pz to x (sy·pz to y), so their rounding is bounded by |sx|·max|pz|.
+    // pbrt-v4 bounds it by maxZt instead (true for |d| ≤ 1, since |sx| ≤ 1), which for grazing
+    // rays (|sx|, |sy| ≪ 1) is so loose that δt exceeds t and flat surfaces are missed below
+    // ~3e-5 rad (catalogue case 10).
+    const float maxPz = max3(std::fabs(p0z), std::fabs(p1z), std::fabs(p2z));
+    const float deltaX = gamma(5) * (maxXt + mulUnfused(std::fabs(r.sx), maxPz));
+    const float deltaY = gamma(5) * (maxYt + mulUnfused(std::fabs(r.sy), maxPz));
+    const float deltaE =
+        2.f * (unfused(gamma(2) * maxXt * maxYt) + mulUnfused(deltaY, maxXt) + mulUnfused(deltaX, maxYt));
     const float maxE = max3(std::fabs(e0), std::fabs(e1), std::fabs(e2));
     const float deltaT =
-        3.f * (gamma(3) * maxE * maxZt + deltaE * maxZt + deltaZ * maxE) * std::fabs(invDet);
+        3.f * (unfused(gamma(3) * maxE * maxZt) + mulUnfused(deltaE, maxZt) + mulUnfused(deltaZ, maxE)) *
+        std::fabs(invDet);
     if (t <= deltaT) return false;
 
     hit.t = t;

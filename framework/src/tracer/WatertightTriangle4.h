@@ -1,7 +1,8 @@
 #pragma once
 // Private: the watertight test of WatertightTriangle.h on the four lanes of a PrimBlock at once.
-// Every lane runs exactly the scalar arithmetic (same IEEE operations in the same order; no FMA
-// since contraction is off, correctly rounded division, maxps/andps for max3/fabs), so a lane's
+// Every lane runs exactly the scalar arithmetic (same IEEE operations in the same order; no FMA:
+// every product passes through mulUnfused4(), like the scalar code's mulUnfused(); correctly
+// rounded division, maxps/andps for max3/fabs), so a lane's
 // t and barycentrics are bit-identical to watertightIntersect(). Lanes where an edge function
 // is zero are handed to watertightIntersect() itself for its exact double-precision fallback.
 
@@ -18,6 +19,12 @@
 #endif
 
 namespace mvcl::detail {
+
+#if defined(__SSE2__)
+/// _mm_mul_ps rounded on its own: GCC and clang implement it as a plain vector product, which
+/// -ffp-contract=fast would fuse with the following _mm_add_ps (see unfused() in FloatBits.h).
+inline __m128 mulUnfused4(__m128 a, __m128 b) { return unfused(_mm_mul_ps(a, b)); }
+#endif
 
 struct TriangleHit4 {
     alignas(16) float t[4];
@@ -60,16 +67,16 @@ inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, in
     const __m128 p0z = _mm_sub_ps(_mm_load_ps(b.v[0][r.kz]), oz);
     const __m128 p1z = _mm_sub_ps(_mm_load_ps(b.v[1][r.kz]), oz);
     const __m128 p2z = _mm_sub_ps(_mm_load_ps(b.v[2][r.kz]), oz);
-    const __m128 p0x = _mm_add_ps(_mm_sub_ps(_mm_load_ps(b.v[0][r.kx]), ox), _mm_mul_ps(sx, p0z));
-    const __m128 p0y = _mm_add_ps(_mm_sub_ps(_mm_load_ps(b.v[0][r.ky]), oy), _mm_mul_ps(sy, p0z));
-    const __m128 p1x = _mm_add_ps(_mm_sub_ps(_mm_load_ps(b.v[1][r.kx]), ox), _mm_mul_ps(sx, p1z));
-    const __m128 p1y = _mm_add_ps(_mm_sub_ps(_mm_load_ps(b.v[1][r.ky]), oy), _mm_mul_ps(sy, p1z));
-    const __m128 p2x = _mm_add_ps(_mm_sub_ps(_mm_load_ps(b.v[2][r.kx]), ox), _mm_mul_ps(sx, p2z));
-    const __m128 p2y = _mm_add_ps(_mm_sub_ps(_mm_load_ps(b.v[2][r.ky]), oy), _mm_mul_ps(sy, p2z));
+    const __m128 p0x = _mm_add_ps(_mm_sub_ps(_mm_load_ps(b.v[0][r.kx]), ox), mulUnfused4(sx, p0z));
+    const __m128 p0y = _mm_add_ps(_mm_sub_ps(_mm_load_ps(b.v[0][r.ky]), oy), mulUnfused4(sy, p0z));
+    const __m128 p1x = _mm_add_ps(_mm_sub_ps(_mm_load_ps(b.v[1][r.kx]), ox), mulUnfused4(sx, p1z));
+    const __m128 p1y = _mm_add_ps(_mm_sub_ps(_mm_load_ps(b.v[1][r.ky]), oy), mulUnfused4(sy, p1z));
+    const __m128 p2x = _mm_add_ps(_mm_sub_ps(_mm_load_ps(b.v[2][r.kx]), ox), mulUnfused4(sx, p2z));
+    const __m128 p2y = _mm_add_ps(_mm_sub_ps(_mm_load_ps(b.v[2][r.ky]), oy), mulUnfused4(sy, p2z));
 
-    const __m128 e0 = _mm_sub_ps(_mm_mul_ps(p1x, p2y), _mm_mul_ps(p1y, p2x));
-    const __m128 e1 = _mm_sub_ps(_mm_mul_ps(p2x, p0y), _mm_mul_ps(p2y, p0x));
-    const __m128 e2 = _mm_sub_ps(_mm_mul_ps(p0x, p1y), _mm_mul_ps(p0y, p1x));
+    const __m128 e0 = _mm_sub_ps(mulUnfused4(p1x, p2y), mulUnfused4(p1y, p2x));
+    const __m128 e1 = _mm_sub_ps(mulUnfused4(p2x, p0y), mulUnfused4(p2y, p0x));
+    const __m128 e2 = _mm_sub_ps(mulUnfused4(p0x, p1y), mulUnfused4(p0y, p1x));
 
     // Lanes with a zero edge function go to the scalar test (double fallback) below.
     const int onEdge =
@@ -88,12 +95,12 @@ inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, in
 
     int hits = 0;
     if (candidates) {
-        const __m128 z0 = _mm_mul_ps(sz, p0z);
-        const __m128 z1 = _mm_mul_ps(sz, p1z);
-        const __m128 z2 = _mm_mul_ps(sz, p2z);
+        const __m128 z0 = mulUnfused4(sz, p0z);
+        const __m128 z1 = mulUnfused4(sz, p1z);
+        const __m128 z2 = mulUnfused4(sz, p2z);
         const __m128 tScaled =
-            _mm_add_ps(_mm_add_ps(_mm_mul_ps(e0, z0), _mm_mul_ps(e1, z1)), _mm_mul_ps(e2, z2));
-        const __m128 bound = _mm_mul_ps(_mm_set1_ps(tMax * kEarlyRejectSlack), det);
+            _mm_add_ps(_mm_add_ps(mulUnfused4(e0, z0), mulUnfused4(e1, z1)), mulUnfused4(e2, z2));
+        const __m128 bound = mulUnfused4(_mm_set1_ps(tMax * kEarlyRejectSlack), det);
         const __m128 detNeg = _mm_cmplt_ps(det, zero);
         const __m128 detPos = _mm_cmpgt_ps(det, zero);
         reject = _mm_or_ps(
@@ -102,31 +109,36 @@ inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, in
         candidates &= ~_mm_movemask_ps(reject);
         if (candidates) {
             const __m128 invDet = _mm_div_ps(_mm_set1_ps(1.f), det);
-            const __m128 t = _mm_mul_ps(tScaled, invDet);
+            const __m128 t = mulUnfused4(tScaled, invDet);
 
             // Conservative t > δt, term by term as in watertightIntersect().
             const __m128 maxZt = _mm_max_ps(
                 _mm_max_ps(_mm_and_ps(z0, absMask), _mm_and_ps(z1, absMask)), _mm_and_ps(z2, absMask));
-            const __m128 deltaZ = _mm_mul_ps(_mm_set1_ps(gamma(3)), maxZt);
+            const __m128 deltaZ = mulUnfused4(_mm_set1_ps(gamma(3)), maxZt);
             const __m128 maxXt = _mm_max_ps(
                 _mm_max_ps(_mm_and_ps(p0x, absMask), _mm_and_ps(p1x, absMask)), _mm_and_ps(p2x, absMask));
             const __m128 maxYt = _mm_max_ps(
                 _mm_max_ps(_mm_and_ps(p0y, absMask), _mm_and_ps(p1y, absMask)), _mm_and_ps(p2y, absMask));
-            const __m128 deltaX = _mm_mul_ps(_mm_set1_ps(gamma(5)), _mm_add_ps(maxXt, maxZt));
-            const __m128 deltaY = _mm_mul_ps(_mm_set1_ps(gamma(5)), _mm_add_ps(maxYt, maxZt));
-            const __m128 deltaE = _mm_mul_ps(
+            // Shear rounding bounded by |sx|·max|pz| (see watertightIntersect()).
+            const __m128 maxPz = _mm_max_ps(
+                _mm_max_ps(_mm_and_ps(p0z, absMask), _mm_and_ps(p1z, absMask)), _mm_and_ps(p2z, absMask));
+            const __m128 deltaX = mulUnfused4(
+                _mm_set1_ps(gamma(5)), _mm_add_ps(maxXt, mulUnfused4(_mm_and_ps(sx, absMask), maxPz)));
+            const __m128 deltaY = mulUnfused4(
+                _mm_set1_ps(gamma(5)), _mm_add_ps(maxYt, mulUnfused4(_mm_and_ps(sy, absMask), maxPz)));
+            const __m128 deltaE = mulUnfused4(
                 _mm_set1_ps(2.f),
-                _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(gamma(2)), maxXt), maxYt),
-                                      _mm_mul_ps(deltaY, maxXt)),
-                           _mm_mul_ps(deltaX, maxYt)));
+                _mm_add_ps(_mm_add_ps(mulUnfused4(mulUnfused4(_mm_set1_ps(gamma(2)), maxXt), maxYt),
+                                      mulUnfused4(deltaY, maxXt)),
+                           mulUnfused4(deltaX, maxYt)));
             const __m128 maxE = _mm_max_ps(
                 _mm_max_ps(_mm_and_ps(e0, absMask), _mm_and_ps(e1, absMask)), _mm_and_ps(e2, absMask));
-            const __m128 deltaT = _mm_mul_ps(
-                _mm_mul_ps(
+            const __m128 deltaT = mulUnfused4(
+                mulUnfused4(
                     _mm_set1_ps(3.f),
-                    _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(gamma(3)), maxE), maxZt),
-                                          _mm_mul_ps(deltaE, maxZt)),
-                               _mm_mul_ps(deltaZ, maxE))),
+                    _mm_add_ps(_mm_add_ps(mulUnfused4(mulUnfused4(_mm_set1_ps(gamma(3)), maxE), maxZt),
+                                          mulUnfused4(deltaE, maxZt)),
+                               mulUnfused4(deltaZ, maxE))),
                 _mm_and_ps(invDet, absMask));
             // Accept t > 0 and not t ≤ δt, with the NaN behaviour of the scalar `if`s.
             const __m128 accept = _mm_and_ps(_mm_cmpgt_ps(t, zero), _mm_cmpnle_ps(t, deltaT));

@@ -82,8 +82,11 @@ glm::vec3 WhittedIntegrator::radiance(const Ray &primaryRay, const RayPolicy &po
                                       RayCounters &counters) const {
     glm::vec3 c = trace(primaryRay, RayType::Primary, 0, policy, counters);
     if (!policy.color.isIdentity()) c = policy.color.matrix * c + policy.color.offset;
-    // A non-finite sample would poison the whole pixel; tests assert this never happens.
-    return isFinite(c) ? c : glm::vec3(0.f);
+    // A non-finite sample would poison the whole pixel: it is counted (tests assert the count
+    // stays 0) and replaced by black.
+    if (isFinite(c)) return c;
+    ++counters.nonFiniteSamples;
+    return glm::vec3(0.f);
 }
 
 glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth,

@@ -34,4 +34,25 @@ inline float nextFloatDown(float v) {
     return std::bit_cast<float>(bits);
 }
 
+/// v unchanged, but the optimiser no longer knows how it was computed. A product passed through
+/// here is rounded before anything adds to it, so it is never fused into an FMA, whatever
+/// -ffp-contract says: the watertight test needs a·b − c·d exactly antisymmetric, and every
+/// build must compute bit-identical hits. mvcl itself compiles with -ffp-contract=off, but a
+/// project compiling its sources or headers may not (GCC's default outside ISO mode is
+/// -ffp-contract=fast, which fuses across statements). Emits no instruction.
+template <typename T> inline T unfused(T v) {
+#if defined(__GNUC__) && defined(__x86_64__)
+    __asm__("" : "+x"(v)); // "v is in an SSE register and may have changed"
+#elif defined(__GNUC__) && defined(__aarch64__)
+    __asm__("" : "+w"(v));
+#else
+    volatile T opaque = v; // slower, but equally opaque
+    v = opaque;
+#endif
+    return v;
+}
+
+/// a·b, rounded on its own (see unfused()).
+inline float mulUnfused(float a, float b) { return unfused(a * b); }
+
 } // namespace mvcl
