@@ -279,9 +279,10 @@ public:
         Binner binner{clo, glm::vec3(0.f), int(std::min<uint32_t>(kBins, std::max<uint32_t>(4, n)))};
         for (int axis = 0; axis < 3; ++axis) {
             const float extent = chi[axis] - clo[axis];
-            const float scale = float(binner.nBins) * (1.f - 1.f / 4096.f) / extent;
             // A flat axis (or an overflowing extent) bins everything into bin 0: no split there.
-            binner.scale[axis] = extent > 0.f && std::isfinite(scale) ? scale : 0.f;
+            // Tested before dividing, so that builds run clean with FP traps on.
+            const float scale = extent > 0.f ? float(binner.nBins) * (1.f - 1.f / 4096.f) / extent : 0.f;
+            binner.scale[axis] = std::isfinite(scale) ? scale : 0.f;
         }
         int bestAxis = -1, bestSplit = -1;
         double bestCost = std::numeric_limits<double>::infinity();
