@@ -106,17 +106,9 @@ TEST(RobustnessIntersection, TessellatedPlaneIsHitEverywhere) {
     for (const glm::dvec3 offset : {glm::dvec3(0.0), glm::dvec3(148376.0, 1234.0, -223423.0)}) {
         auto gridValue = [&](int axis, int i) { return float(offset[axis] - 1.0 + 2.0 * i / kCells); };
         Scene scene;
-        TriangleMesh grid;
-        for (int j = 0; j <= kCells; ++j)
-            for (int i = 0; i <= kCells; ++i)
-                grid.positions.push_back({float(offset.x), gridValue(1, i), gridValue(2, j)});
-        for (int j = 0; j < kCells; ++j)
-            for (int i = 0; i < kCells; ++i) {
-                const uint32_t a = uint32_t(j * (kCells + 1) + i), b = a + 1, c = a + kCells + 1, d = c + 1;
-                grid.indices.push_back({a, b, d});
-                grid.indices.push_back({a, d, c});
-            }
-        scene.meshes.push_back(grid);
+        scene.meshes.push_back(makeGridMesh(kCells, [&](int i, int j) {
+            return glm::vec3(float(offset.x), gridValue(1, i), gridValue(2, j));
+        }));
         const Tracer tracer(scene);
         uint64_t rays = 0, misses = 0;
         for (int i = 0; i < 300000; ++i) {

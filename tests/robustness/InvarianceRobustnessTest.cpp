@@ -2,7 +2,7 @@
 // no fixed epsilon) and translation invariance (the glTF loader re-centres in double; built
 // scenes that skip re-centring lose float precision with distance, which is measured).
 
-#include "RobustnessRender.h"
+#include "TestRender.h"
 #include "ImageCompare.h"
 
 #include "tracer/TracerTestUtil.h"
@@ -63,7 +63,7 @@ Scene makeInvarianceScene(double k, const glm::dvec3 &centre) {
     return scene;
 }
 
-test::RobustnessRender renderInvarianceScene(double k, const glm::dvec3 &centre) {
+test::TestRender renderInvarianceScene(double k, const glm::dvec3 &centre) {
     const Scene scene = makeInvarianceScene(k, centre);
     const Tracer tracer(scene);
     const Camera camera = Camera::lookAt(glm::vec3(centre + k * glm::dvec3(3, 2, 5)), glm::vec3(centre),
@@ -141,7 +141,7 @@ std::string cubesGltf(const glm::dvec3 &t) {
            R"({"mesh":1,"translation":)" + translation[1] + R"(,"scale":[0.5,0.5,0.5],"extras":{"layer":1}}]})";
 }
 
-test::RobustnessRender renderLoadedCubes(const glm::dvec3 &t, glm::dvec3 &worldOrigin) {
+test::TestRender renderLoadedCubes(const glm::dvec3 &t, glm::dvec3 &worldOrigin) {
     const std::string json = cubesGltf(t);
     Scene scene = loadGltfFromMemory({reinterpret_cast<const uint8_t *>(json.data()), json.size()},
                                      "cubes.gltf", std::filesystem::temp_directory_path());

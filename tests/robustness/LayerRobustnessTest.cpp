@@ -2,7 +2,7 @@
 // planes through faces and edges, and a camera inside closed meshes.
 
 #include "RobustnessCases.h"
-#include "RobustnessRender.h"
+#include "TestRender.h"
 
 #include "tracer/TracerTestUtil.h"
 #include "../../framework/src/tracer/TraversalIsa.h"

@@ -61,18 +61,10 @@ TEST(RobustnessOffsets, NoShadowAcneUpToTranslationOneMillion) {
                 plane.offset = float(glm::dot(glm::dvec3(plane.normal), t));
                 scene.planes.push_back(plane);
             } else {
-                TriangleMesh grid;
                 constexpr int kCells = 16;
-                for (int j = 0; j <= kCells; ++j)
-                    for (int i = 0; i <= kCells; ++i)
-                        grid.positions.push_back(glm::vec3(t + glm::dvec3(-4.0 + 8.0 * i / kCells, -4.0 + 8.0 * j / kCells, 0.0)));
-                for (int j = 0; j < kCells; ++j)
-                    for (int i = 0; i < kCells; ++i) {
-                        const uint32_t a = uint32_t(j * (kCells + 1) + i), b = a + 1, c = a + kCells + 1, d = c + 1;
-                        grid.indices.push_back({a, b, d});
-                        grid.indices.push_back({a, d, c});
-                    }
-                scene.meshes.push_back(grid);
+                scene.meshes.push_back(makeGridMesh(kCells, [&](int i, int j) {
+                    return glm::vec3(t + glm::dvec3(-4.0 + 8.0 * i / kCells, -4.0 + 8.0 * j / kCells, 0.0));
+                }));
             }
             Light light;
             light.type = LightType::Directional;

@@ -76,6 +76,22 @@ struct WatertightConfig {
 /// The sphere mesh of a configuration, positions rounded to float after adding the centre in
 /// double (what a loader without re-centring produces).
 TriangleMesh makeWatertightSphere(const WatertightConfig &config);
+
+/// A cells × cells grid of quads, two triangles each, vertex (i, j) at vertexAt(i, j), i and j
+/// in [0, cells].
+template <class VertexAt>
+TriangleMesh makeGridMesh(int cells, const VertexAt &vertexAt) {
+    TriangleMesh grid;
+    for (int j = 0; j <= cells; ++j)
+        for (int i = 0; i <= cells; ++i) grid.positions.push_back(vertexAt(i, j));
+    for (int j = 0; j < cells; ++j)
+        for (int i = 0; i < cells; ++i) {
+            const uint32_t a = uint32_t(j * (cells + 1) + i), b = a + 1, c = a + uint32_t(cells) + 1, d = c + 1;
+            grid.indices.push_back({a, b, d});
+            grid.indices.push_back({a, d, c});
+        }
+    return grid;
+}
 /// Cases 1–3 at the origin and at (148376, 1234, −223423), `rays` rays each.
 std::vector<WatertightConfig> standardWatertightConfigs(uint64_t rays);
 /// Rays from inside the sphere through Tracer::closestHit. failures = leaks (no hit); duplicates

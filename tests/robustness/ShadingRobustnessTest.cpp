@@ -2,7 +2,7 @@
 // (25), the NaN hunt with floating-point traps (26) and the bias floor (28).
 
 #include "RobustnessCases.h"
-#include "RobustnessRender.h"
+#include "TestRender.h"
 
 #include "tracer/TracerTestUtil.h"
 
@@ -176,7 +176,7 @@ Scene makeNanHuntScene() {
 }
 
 /// Renders the NaN-hunt scene single-threaded (so the calling thread's FP environment applies).
-test::RobustnessRender renderNanHunt() {
+test::TestRender renderNanHunt() {
     const Scene scene = makeNanHuntScene();
     const Tracer tracer(scene);
     const Camera camera = Camera::lookAt({0.37f, 2.1f, 4.3f}, {0.05f, 0.1f, -0.03f}, {0.f, 1.f, 0.f}, 70.f);

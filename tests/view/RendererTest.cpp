@@ -1,6 +1,7 @@
 #include <mvcl/view/Renderer.h>
 
 #include "ImageCompare.h"
+#include "TestRender.h"
 
 #include <mvcl/core/Error.h>
 #include <mvcl/io/SceneLoader.h>
@@ -16,46 +17,30 @@ using namespace mvcl;
 
 namespace {
 
-struct RenderedScene {
-    Framebuffer image;
-    RenderStats stats;
-};
+using test::TestRender;
+using test::nonFinitePixels;
 
-RenderedScene renderBuiltin(const std::string &name, int width, int height, int spp, int threads,
-                            const RayPolicy &policy = {}) {
+TestRender renderBuiltin(const std::string &name, int width, int height, int spp, int threads,
+                         const RayPolicy &policy = {}) {
     const Scene scene = makeBuiltinScene(name);
     const Tracer tracer(scene);
-    RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
-    settings.samplesPerPixel = spp;
-    settings.threads = threads;
-    RenderedScene out;
-    out.stats = Renderer(tracer).render(Camera::fromDesc(scene.cameras.front()),
-                                        PolicyMap(width, height, policy), settings, out.image);
-    return out;
-}
-
-std::size_t nonFinitePixels(const Framebuffer &f) {
-    std::size_t n = 0;
-    for (const glm::vec3 &p : f.pixels())
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) ++n;
-    return n;
+    return test::renderWithPolicy(tracer, Camera::fromDesc(scene.cameras.front()), width, height, spp, threads,
+                                  policy);
 }
 
 } // namespace
 
 TEST(Renderer, ImageIsIdenticalForAnyThreadCount) {
-    const RenderedScene one = renderBuiltin("cube-in-cube", 96, 72, 4, 1);
-    const RenderedScene two = renderBuiltin("cube-in-cube", 96, 72, 4, 2);
-    const RenderedScene five = renderBuiltin("cube-in-cube", 96, 72, 4, 5);
+    const TestRender one = renderBuiltin("cube-in-cube", 96, 72, 4, 1);
+    const TestRender two = renderBuiltin("cube-in-cube", 96, 72, 4, 2);
+    const TestRender five = renderBuiltin("cube-in-cube", 96, 72, 4, 5);
     EXPECT_EQ(one.image.pixels(), two.image.pixels());
     EXPECT_EQ(one.image.pixels(), five.image.pixels());
     EXPECT_EQ(one.stats.rays.total(), two.stats.rays.total());
 }
 
 TEST(Renderer, CountsEveryRayTypeOnTheDefaultScene) {
-    const RenderedScene r = renderBuiltin("cube-in-cube", 80, 60, 1, 0);
+    const TestRender r = renderBuiltin("cube-in-cube", 80, 60, 1, 0);
     EXPECT_EQ(r.stats.pixels, 80u * 60u);
     EXPECT_GE(r.stats.rays.primary, 80u * 60u);
     EXPECT_GT(r.stats.rays.shadow, 0u);
@@ -94,7 +79,7 @@ TEST(Renderer, RejectsBadSettingsAndMismatchedPolicyMap) {
 // stratified sampling → sRGB). Regenerate with MVCL_UPDATE_GOLDEN=1 after an intended change.
 TEST(Renderer, DefaultSceneMatchesGoldenImage) {
     const std::filesystem::path golden = std::filesystem::path(MVCL_GOLDEN_DIR) / "cube-in-cube.png";
-    const RenderedScene r = renderBuiltin("cube-in-cube", 200, 150, 4, 0);
+    const TestRender r = renderBuiltin("cube-in-cube", 200, 150, 4, 0);
     if (test::updateGoldenRequested()) {
         writeImage(golden, r.image);
         GTEST_SKIP() << "wrote " << golden;

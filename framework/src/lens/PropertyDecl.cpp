@@ -157,15 +157,12 @@ PropertyValue PropertyDecl::parse(std::string_view rawText) const {
     }
     case PropertyType::Choice: value = PropertyValue::choice(std::string(text)); break;
     case PropertyType::LayerSet:
-        try {
-            value = PropertyValue::layerSet(parseLayerSet(std::string(text)));
-        } catch (const Error &e) {
-            throw Error(source, e.problem());
-        }
-        break;
     case PropertyType::RayTypeSet:
+        // The set parsers throw Error("", problem); name this property as the source instead.
         try {
-            value = PropertyValue::rayTypeSet(parseRayTypeSet(std::string(text)));
+            const std::string textCopy(text);
+            value = type == PropertyType::LayerSet ? PropertyValue::layerSet(parseLayerSet(textCopy))
+                                                   : PropertyValue::rayTypeSet(parseRayTypeSet(textCopy));
         } catch (const Error &e) {
             throw Error(source, e.problem());
         }

@@ -61,50 +61,43 @@ const char *propertyTypeName(PropertyType type) {
 }
 
 PropertyValue PropertyValue::boolean(bool value) {
-    PropertyValue v;
-    v.m_type = PropertyType::Bool;
+    PropertyValue v(PropertyType::Bool);
     v.m_number = value ? 1.0 : 0.0;
     return v;
 }
 
 PropertyValue PropertyValue::integer(int value) {
-    PropertyValue v;
-    v.m_type = PropertyType::Int;
+    PropertyValue v(PropertyType::Int);
     v.m_number = value;
     return v;
 }
 
 PropertyValue PropertyValue::real(double value) {
-    PropertyValue v;
-    v.m_type = PropertyType::Real;
+    PropertyValue v(PropertyType::Real);
     v.m_number = value;
     return v;
 }
 
 PropertyValue PropertyValue::color(const glm::vec3 &value) {
-    PropertyValue v;
-    v.m_type = PropertyType::Color;
+    PropertyValue v(PropertyType::Color);
     v.m_color = value;
     return v;
 }
 
 PropertyValue PropertyValue::choice(std::string value) {
-    PropertyValue v;
-    v.m_type = PropertyType::Choice;
+    PropertyValue v(PropertyType::Choice);
     v.m_text = std::move(value);
     return v;
 }
 
 PropertyValue PropertyValue::layerSet(uint32_t mask) {
-    PropertyValue v;
-    v.m_type = PropertyType::LayerSet;
+    PropertyValue v(PropertyType::LayerSet);
     v.m_bits = mask;
     return v;
 }
 
 PropertyValue PropertyValue::rayTypeSet(uint8_t mask) {
-    PropertyValue v;
-    v.m_type = PropertyType::RayTypeSet;
+    PropertyValue v(PropertyType::RayTypeSet);
     v.m_bits = mask;
     return v;
 }

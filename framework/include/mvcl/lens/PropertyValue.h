@@ -53,6 +53,8 @@ public:
     bool operator==(const PropertyValue &other) const = default;
 
 private:
+    explicit PropertyValue(PropertyType type) : m_type(type) {}
+
     PropertyType m_type = PropertyType::Bool;
     double m_number = 0.0;   // Bool, Int, Real
     glm::vec3 m_color{0.f};  // Color

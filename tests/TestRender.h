@@ -1,5 +1,5 @@
 #pragma once
-// Small renders for the robustness tests: one policy for the whole image, plus image metrics
+// Small renders for tests (renderer, robustness): one policy for the whole image, plus image metrics
 // (bitwise hash, mean absolute difference, non-finite pixels).
 
 #include <mvcl/tracer/Tracer.h>
@@ -15,19 +15,19 @@
 
 namespace mvcl::test {
 
-struct RobustnessRender {
+struct TestRender {
     Framebuffer image;
     RenderStats stats;
 };
 
-inline RobustnessRender renderWithPolicy(const Tracer &tracer, const Camera &camera, int width, int height,
+inline TestRender renderWithPolicy(const Tracer &tracer, const Camera &camera, int width, int height,
                                          int spp, int threads, const RayPolicy &policy = {}) {
     RenderSettings settings;
     settings.width = width;
     settings.height = height;
     settings.samplesPerPixel = spp;
     settings.threads = threads;
-    RobustnessRender out;
+    TestRender out;
     out.stats = Renderer(tracer).render(camera, PolicyMap(width, height, policy), settings, out.image);
     return out;
 }
