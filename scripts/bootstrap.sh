@@ -10,7 +10,7 @@ build_type="${MVCL_BUILD_TYPE:-Release}"
 
 packages=(
   g++ cmake ninja-build pkg-config
-  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenimageio-dev
+  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenimageio-dev libtbb-dev
   libgtest-dev
   libembree-dev libbenchmark-dev   # optional peers for mvcl-bench
 )

@@ -5,13 +5,42 @@
 
 namespace mvcl {
 
+/// How a RenderSession spends samples once a pixel has its first one.
+enum class SamplingMode : uint8_t {
+    /// Exactly `samplesPerPixel` samples per pixel, then the view is idle (batch renders,
+    /// lens-drag frames that must equal a full re-render).
+    Fixed,
+    /// Every pixel gets more samples, pass after pass, until `maxSamplesPerPixel`, the target
+    /// error or the time limit is reached.
+    Progressive,
+    /// Like Progressive, but after `minSamplesPerPixel` a pixel gets more samples only while its
+    /// estimated error (or a neighbour's) is above `targetError`.
+    Adaptive,
+};
+
 struct RenderSettings {
     int width = 800;          ///< pixels, ≥ 1
     int height = 600;         ///< pixels, ≥ 1
-    int samplesPerPixel = 4;  ///< stratified on a ⌈√n⌉×⌈√n⌉ grid, jittered; ≥ 1
+    int samplesPerPixel = 4;  ///< Fixed mode: samples per pixel (≥ 1), on a progressive 2-D sequence
     int threads = 0;          ///< 0 = all cores; the image does not depend on it
     int tileSize = 16;        ///< pixels per tile side
     uint32_t seed = 0;        ///< jitter seed; same seed → same image
+
+    SamplingMode sampling = SamplingMode::Fixed;
+    int minSamplesPerPixel = 8;     ///< Adaptive: samples before a pixel's error estimate is trusted (≥ 2)
+    int maxSamplesPerPixel = 1024;  ///< Progressive/Adaptive: no pixel gets more (≥ 1)
+    /// Progressive/Adaptive: stop when every pixel's estimated relative error is at most this
+    /// (0 = no error target). The estimate compares the mean of all samples with the mean of
+    /// the even-numbered ones: |I − A|₁ / √(ε + I_r + I_g + I_b), ε = 1e-4.
+    float targetError = 0.f;
+    double timeLimitSeconds = 0.0;  ///< stop refining after this long since the last reset (0 = none)
+    /// While the camera moves, a reduced-resolution preview sized to take about this long
+    /// (seconds; 0 = never preview, always render full resolution).
+    double previewBudgetSeconds = 1.0 / 30.0;
+    /// Leave out the stages no pixel needs (shadow rays nothing can block, secondary rays of
+    /// materials that neither reflect nor refract, identity colour maps). Off only to measure
+    /// what leaving them out saves.
+    bool skipUnneededStages = true;
 };
 
 } // namespace mvcl
