@@ -22,7 +22,8 @@ int workerThreadCount() {
 namespace detail {
 
 tbb::task_arena &workerArena(int threads) {
-    const int concurrency = threads > 0 ? std::min(threads, 256) : workerThreadCount();
+    // More threads than cores would only oversubscribe them (and TBB caps its workers there).
+    const int concurrency = threads > 0 ? std::min(threads, workerThreadCount()) : workerThreadCount();
     static std::mutex mutex;
     static std::map<int, std::unique_ptr<tbb::task_arena>> arenas;
     std::lock_guard lock(mutex);

@@ -1,7 +1,10 @@
 #pragma once
 /// \file Renderer.h
-/// Tile-parallel renderer over all cores. Each pixel's samples depend only on (x, y, seed), and a
-/// pixel is summed in a fixed order, so the image is identical for any thread count.
+/// One-shot frames: every pixel gets RenderSettings::samplesPerPixel samples, tile-parallel on
+/// the worker pool. Each pixel's samples depend only on (x, y, sample index, seed), and a pixel
+/// is summed in a fixed order, so the image is identical for any thread count, and identical
+/// to a RenderSession's Fixed-mode image of the same settings. Interactive views (incremental,
+/// progressive, adaptive) use RenderSession.
 
 #include <mvcl/lens/PolicyMap.h>
 #include <mvcl/view/Camera.h>
@@ -29,6 +32,9 @@ public:
     RenderStats render(const Camera &camera, const PolicyMap &policies,
                        const RenderSettings &settings, Framebuffer &target,
                        const ProgressCallback &progress = {}) const;
+
+    /// Throws mvcl::Error when the settings are out of range or do not match the map's size.
+    static void checkSettings(const RenderSettings &settings, const PolicyMap &policies);
 
 private:
     const Tracer &m_tracer;

@@ -1,0 +1,126 @@
+#include "PixelTracer_p.h"
+
+#include <cmath>
+
+namespace mvcl::detail {
+
+namespace {
+
+/// 32-bit integer hash (lowbias32): per-pixel rotations without shared state.
+uint32_t hash32(uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+double unitDouble(uint32_t bits) { return double(bits) * (1.0 / 4294967296.0); }
+
+// R2: the inverse plastic number and its square (1/g, 1/g²), g³ = g + 1.
+constexpr double kR2a = 0.75487766624669276005;
+constexpr double kR2b = 0.56984029099805326591;
+
+} // namespace
+
+glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed) {
+    if (k == 0) return {0.5f, 0.5f};
+    const uint32_t key = hash32(uint32_t(y) * 0x9e3779b1u ^ uint32_t(x) ^ hash32(seed));
+    const double u = 0.5 + unitDouble(key) + double(k) * kR2a;
+    const double v = 0.5 + unitDouble(hash32(key)) + double(k) * kR2b;
+    // Rounded to float once; the largest float below 1 keeps the sample inside the pixel.
+    const float below1 = 0x1.fffffep-1f;
+    return {std::min(float(u - std::floor(u)), below1), std::min(float(v - std::floor(v)), below1)};
+}
+
+float PixelSamples::relativeError() const {
+    if (count < 2) return INFINITY;
+    const glm::vec3 all = sum / float(count);
+    const glm::vec3 even = evenSum / float((count + 1) / 2);
+    const glm::vec3 d = glm::abs(all - even);
+    return (d.x + d.y + d.z) / std::sqrt(1e-4f + std::max(all.x + all.y + all.z, 0.f));
+}
+
+PixelTracer::PixelTracer(const WhittedIntegrator &integrator, const Camera &camera, const PolicyMap &map,
+                         uint32_t seed)
+    : m_integrator(integrator), m_camera(camera), m_map(map), m_seed(seed),
+      m_costs(map.policies().size()), m_nanoseconds(map.policies().size(), 0), m_runStart(Clock::now()) {}
+
+void PixelTracer::chargeRun(int policy) {
+    // Time is charged per run of equal policy, so the clock is read only where the policy
+    // changes (lens edges), not per pixel.
+    if (policy == m_runPolicy) return;
+    const Clock::time_point now = Clock::now();
+    if (m_runPolicy >= 0)
+        m_nanoseconds[size_t(m_runPolicy)] +=
+            std::chrono::duration_cast<std::chrono::nanoseconds>(now - m_runStart).count();
+    m_runStart = now;
+    m_runPolicy = policy;
+}
+
+void PixelTracer::endRun() { chargeRun(-1); }
+
+glm::vec3 PixelTracer::traceTerms(int x, int y, const glm::vec2 &position) {
+    // Each term's rays and time are charged to its own policy.
+    const int width = m_map.width(), height = m_map.height();
+    glm::vec3 value(0.f);
+    for (const PolicyTerm &term : m_map.terms(x, y)) {
+        chargeRun(term.policy);
+        const PixelPolicy &policy = m_map.policy(term.policy);
+        const uint64_t raysBefore = m_rays.total();
+        const glm::vec2 p = policy.samplePosition(position, width, height);
+        value += term.weight * m_integrator.radiance(m_camera.generateRay(p.x, p.y, width, height), policy.ray, m_rays);
+        m_costs[term.policy].rays += m_rays.total() - raysBefore;
+    }
+    return value;
+}
+
+void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &samples) {
+    if (samples.count >= endSample) return;
+    const std::span<const PolicyTerm> terms = m_map.terms(x, y);
+    const int width = m_map.width(), height = m_map.height();
+    const glm::vec2 pixel{float(x), float(y)};
+    if (terms.size() == 1) {
+        const uint16_t index = terms[0].policy;
+        chargeRun(index);
+        const PixelPolicy &policy = m_map.policy(index);
+        const uint64_t raysBefore = m_rays.total();
+        for (uint32_t k = samples.count; k < endSample; ++k) {
+            const glm::vec2 p = policy.samplePosition(pixel + sampleOffset(x, y, k, m_seed), width, height);
+            const glm::vec3 value = m_integrator.radiance(m_camera.generateRay(p.x, p.y, width, height), policy.ray, m_rays);
+            samples.sum += value;
+            if ((k & 1u) == 0) samples.evenSum += value;
+        }
+        m_costs[index].rays += m_rays.total() - raysBefore;
+        ++m_costs[index].pixels;
+        m_samples += endSample - samples.count;
+        samples.count = endSample;
+        return;
+    }
+    // A feathered edge: each sample blends every term at the same position.
+    for (uint32_t k = samples.count; k < endSample; ++k) {
+        const glm::vec3 value = traceTerms(x, y, pixel + sampleOffset(x, y, k, m_seed));
+        samples.sum += value;
+        if ((k & 1u) == 0) samples.evenSum += value;
+    }
+    for (const PolicyTerm &term : terms) ++m_costs[term.policy].pixels;
+    m_samples += uint64_t(endSample - samples.count) * terms.size();
+    samples.count = endSample;
+}
+
+glm::vec3 PixelTracer::sampleAt(int x, int y, const glm::vec2 &position) {
+    m_samples += m_map.terms(x, y).size();
+    return traceTerms(x, y, position);
+}
+
+void PixelTracer::addCostsTo(std::vector<PolicyCost> &costs) const {
+    costs.resize(m_costs.size());
+    for (size_t i = 0; i < m_costs.size(); ++i) {
+        costs[i].pixels += m_costs[i].pixels;
+        costs[i].rays += m_costs[i].rays;
+        costs[i].milliseconds += double(m_nanoseconds[i]) * 1e-6;
+    }
+}
+
+} // namespace mvcl::detail

@@ -1,0 +1,78 @@
+#pragma once
+// Private: the per-pixel kernel shared by Renderer (one-shot frames) and RenderSession
+// (incremental, progressive, adaptive). Sample k of pixel (x, y) depends only on (x, y, k,
+// seed) and the pixel's policy terms, so any subset of pixels and samples can be traced in any
+// order, on any thread, and a pixel's sum over k = 0, 1, … is the same bit for bit.
+
+#include <mvcl/lens/PolicyCost.h>
+#include <mvcl/lens/PolicyMap.h>
+#include <mvcl/tracer/RayCounters.h>
+#include <mvcl/tracer/WhittedIntegrator.h>
+#include <mvcl/view/Camera.h>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+namespace mvcl::detail {
+
+/// Position of sample k inside pixel (x, y), in [0, 1)²: sample 0 is the pixel centre (a
+/// one-sample image is sharp and stable while a lens is dragged); samples 1, 2, … follow the
+/// R2 sequence (a 2-D Kronecker sequence, well spread for any prefix length, which is what
+/// progressive rendering needs) rotated per pixel by a hash of (x, y, seed).
+glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed);
+
+/// Running sums of one pixel's samples. The even-numbered samples are also summed on their
+/// own: their mean against the mean of all is the error estimate of adaptive sampling.
+struct PixelSamples {
+    glm::vec3 sum{0.f};
+    glm::vec3 evenSum{0.f};
+    uint32_t count = 0;
+
+    glm::vec3 mean() const { return count ? sum / float(count) : glm::vec3(0.f); }
+    /// |I − A|₁ / √(ε + I_r + I_g + I_b), I the mean of all samples, A of the even ones;
+    /// +∞ with fewer than two samples.
+    float relativeError() const;
+};
+
+/// Traces samples of pixels under a policy map and charges rays, pixels and time to its
+/// policies. One per worker and pass: not thread-safe, cheap to make.
+class PixelTracer {
+public:
+    PixelTracer(const WhittedIntegrator &integrator, const Camera &camera, const PolicyMap &map,
+                uint32_t seed);
+
+    /// Adds samples [samples.count, endSample) of pixel (x, y) to `samples`, in order.
+    void addSamples(int x, int y, uint32_t endSample, PixelSamples &samples);
+    /// One sample through the continuous raster position `position` under the policies of
+    /// pixel (x, y) (previews: one ray per block of pixels).
+    glm::vec3 sampleAt(int x, int y, const glm::vec2 &position);
+
+    /// Call where the policy run ends (end of a tile row) so time is charged to it.
+    void endRun();
+    const RayCounters &rays() const { return m_rays; }
+    uint64_t samplesTaken() const { return m_samples; }
+    /// Adds this tracer's per-policy costs into `costs` (resized to the map's policy count).
+    void addCostsTo(std::vector<PolicyCost> &costs) const;
+
+private:
+    using Clock = std::chrono::steady_clock;
+    glm::vec3 traceTerms(int x, int y, const glm::vec2 &position);
+    void chargeRun(int policy);
+
+    const WhittedIntegrator &m_integrator;
+    const Camera &m_camera;
+    const PolicyMap &m_map;
+    uint32_t m_seed;
+    RayCounters m_rays;
+    uint64_t m_samples = 0;
+    std::vector<PolicyCost> m_costs;
+    std::vector<int64_t> m_nanoseconds;
+    int m_runPolicy = -1;
+    Clock::time_point m_runStart;
+};
+
+} // namespace mvcl::detail
