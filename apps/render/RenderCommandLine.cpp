@@ -57,7 +57,15 @@ Scenes:  builtin:cube-in-cube (the default scene of the paper), builtin:onion
 Options:
   -o, --output FILE       image to write (.png/.jpg/.tif sRGB, .exr linear); default out/<scene>.png
       --size WxH          image size in pixels (default 800x600)
-      --spp N             samples per pixel, stratified (default 4)
+      --spp N             samples per pixel (default 4); with the options below, the minimum
+      --adaptive          adaptive sampling: after --spp samples (at least 2), more only where
+                          the estimated error (or a neighbour's) is above --target-error
+      --target-error E    stop when every pixel's estimated relative error is at most E
+                          (default 0.01 with --adaptive, none otherwise)
+      --time-limit S      stop refining after S seconds
+      --max-spp N         no pixel gets more than N samples (default 256 with a budget)
+                          (--target-error, --time-limit or --max-spp without --adaptive:
+                          progressive sampling, every pixel alike, until the first budget met)
       --threads N         render threads, 0 = all cores (default 0; the image does not depend on it)
       --seed N            sample jitter seed (default 0)
       --eye X,Y,Z         camera position (world units of the file)
@@ -104,6 +112,14 @@ RenderCommandLine parseRenderCommandLine(const std::vector<std::string> &args) {
             cl.width = parseInt("--size", s.substr(0, x), 1, 16384);
             cl.height = parseInt("--size", s.substr(x + 1), 1, 16384);
         } else if (a == "--spp") cl.samplesPerPixel = parseInt(a, value(), 1, 65536);
+        else if (a == "--adaptive") cl.adaptive = true;
+        else if (a == "--target-error") {
+            cl.targetError = parseFloat(a, value());
+            if (*cl.targetError <= 0.f) usageError("--target-error must be > 0");
+        } else if (a == "--time-limit") {
+            cl.timeLimit = parseFloat(a, value());
+            if (*cl.timeLimit <= 0.0) usageError("--time-limit must be > 0 seconds");
+        } else if (a == "--max-spp") cl.maxSamplesPerPixel = parseInt(a, value(), 1, 1 << 20);
         else if (a == "--threads") cl.threads = parseInt(a, value(), 0, 1024);
         else if (a == "--seed") cl.seed = unsigned(parseInt(a, value(), 0, 1 << 30));
         else if (a == "--eye") cl.eye = parseVec3(a, value());
@@ -125,6 +141,9 @@ RenderCommandLine parseRenderCommandLine(const std::vector<std::string> &args) {
     }
     if (!cl.help && !cl.version && !cl.listLenses && cl.source.empty() && cl.lensFile.empty())
         usageError("no scene given");
+    if (cl.maxSamplesPerPixel && *cl.maxSamplesPerPixel < cl.samplesPerPixel)
+        usageError("--max-spp " + std::to_string(*cl.maxSamplesPerPixel) + " is below --spp " +
+                   std::to_string(cl.samplesPerPixel));
     if (cl.eye && cl.target && *cl.eye == *cl.target) usageError("--eye and --target are the same point");
     return cl;
 }

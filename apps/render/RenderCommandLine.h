@@ -24,7 +24,11 @@ struct RenderCommandLine {
     std::string output;              ///< image path; empty = out/<scene>.png
     int width = 800;
     int height = 600;
-    int samplesPerPixel = 4;
+    int samplesPerPixel = 4;         ///< fixed sampling; with a budget below, the minimum per pixel
+    bool adaptive = false;           ///< --adaptive: samples where the estimated error is high
+    std::optional<float> targetError;   ///< --target-error (progressive/adaptive)
+    std::optional<double> timeLimit;    ///< --time-limit, seconds
+    std::optional<int> maxSamplesPerPixel; ///< --max-spp
     int threads = 0;
     unsigned seed = 0;
     std::optional<glm::vec3> eye;    ///< world space
@@ -43,6 +47,11 @@ struct RenderCommandLine {
     bool version = false;
     bool progress = true;
 };
+
+/// Whether samples accumulate past --spp: --adaptive, or any of the budgets.
+inline bool isRefining(const RenderCommandLine &cl) {
+    return cl.adaptive || cl.targetError || cl.timeLimit || cl.maxSamplesPerPixel;
+}
 
 /// Throws mvcl::Error("command line", ...) on anything malformed.
 RenderCommandLine parseRenderCommandLine(const std::vector<std::string> &args);

@@ -5,6 +5,7 @@
 #include "RenderCommandLine.h"
 
 #include <mvcl/core/Error.h>
+#include <mvcl/core/WorkerPool.h>
 #include <mvcl/io/LensStackFile.h>
 #include <mvcl/io/SceneLoader.h>
 #include <mvcl/lens/LensRegistry.h>
@@ -12,7 +13,7 @@
 #include <mvcl/view/Camera.h>
 #include <mvcl/view/ImageIO.h>
 #include <mvcl/view/LensOutlines.h>
-#include <mvcl/view/Renderer.h>
+#include <mvcl/view/RenderSession.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -155,7 +156,7 @@ LensStackDescription loadLenses(const RenderCommandLine &cl, const LensRegistry 
     return description;
 }
 
-void printLensCosts(const LensStack &stack, const PolicyMap &policies, const RenderStats &stats) {
+void printLensCosts(const LensStack &stack, const PolicyMap &policies, const RenderPassStats &stats) {
     for (const LensCost &cost : stack.costs(policies, stats.perPolicy)) {
         const Lens &lens = *stack.lens(cost.index);
         std::printf("lens %d %s '%s': %s px, %s rays, %.1f ms%s\n", cost.index, lens.typeName().c_str(),
@@ -164,6 +165,42 @@ void printLensCosts(const LensStack &stack, const PolicyMap &policies, const Ren
     }
     std::printf("policies   %zu distinct (base included), %s px blend several (feathered edges)\n",
                 policies.policies().size(), grouped(policies.blendedPixelCount()).c_str());
+}
+
+RenderSettings renderSettings(const RenderCommandLine &cl) {
+    RenderSettings s;
+    s.width = cl.width;
+    s.height = cl.height;
+    s.samplesPerPixel = cl.samplesPerPixel;
+    s.threads = cl.threads;
+    s.seed = cl.seed;
+    s.previewBudgetSeconds = 0.0; // nothing moves in a batch render
+    if (isRefining(cl)) {
+        s.sampling = cl.adaptive ? SamplingMode::Adaptive : SamplingMode::Progressive;
+        s.minSamplesPerPixel = std::max(2, cl.samplesPerPixel);
+        s.maxSamplesPerPixel = cl.maxSamplesPerPixel.value_or(std::max(256, cl.samplesPerPixel));
+        s.targetError = cl.targetError.value_or(cl.adaptive ? 0.01f : 0.f);
+        s.timeLimitSeconds = cl.timeLimit.value_or(0.0);
+    }
+    return s;
+}
+
+std::string samplingName(const RenderSettings &s) {
+    char text[160];
+    switch (s.sampling) {
+    case SamplingMode::Fixed: std::snprintf(text, sizeof text, "%d spp", s.samplesPerPixel); break;
+    case SamplingMode::Progressive:
+    case SamplingMode::Adaptive:
+        char limit[32];
+        if (s.timeLimitSeconds > 0) std::snprintf(limit, sizeof limit, "%g s", s.timeLimitSeconds);
+        else std::snprintf(limit, sizeof limit, "none");
+        std::snprintf(text, sizeof text, "%s %d..%d spp, target error %g, time limit %s",
+                      s.sampling == SamplingMode::Adaptive ? "adaptive" : "progressive",
+                      s.sampling == SamplingMode::Adaptive ? s.minSamplesPerPixel : 1, s.maxSamplesPerPixel,
+                      double(s.targetError), limit);
+        break;
+    }
+    return text;
 }
 
 int run(const RenderCommandLine &cl) {
@@ -217,18 +254,15 @@ int run(const RenderCommandLine &cl) {
         }
     }
 
-    RenderSettings settings;
-    settings.width = cl.width;
-    settings.height = cl.height;
-    settings.samplesPerPixel = cl.samplesPerPixel;
-    settings.threads = cl.threads;
-    settings.seed = cl.seed;
-    const PolicyMap policies = lenses.lenses.compose(RayPolicy{}, cl.width, cl.height);
-    Framebuffer image;
+    RenderSession session(tracer);
+    session.setSettings(renderSettings(cl));
+    session.setCamera(camera);
+    session.setLensStack(lenses.lenses);
     ProgressBar bar(cl.progress && isatty(STDERR_FILENO));
-    const RenderStats stats = Renderer(tracer).render(camera, policies, settings, image,
-                                                      [&](float f) { bar.update(f); });
+    session.setProgressCallback([&](float f) { bar.update(f); });
+    const RenderPassStats stats = session.renderUntilIdle();
     bar.finish();
+    Framebuffer image = session.image();
     drawLensOutlines(lenses.lenses, image);
 
     const std::string output = cl.output.empty() ? "out/" + sceneStem(source) + ".png" : cl.output;
@@ -245,13 +279,18 @@ int run(const RenderCommandLine &cl) {
                 scene.layers.count(), scene.lights.size());
     std::printf("bvh        %.1f ms build, %zu nodes, depth %d, %.1f MiB\n", build.buildMilliseconds, build.nodes,
                 build.maxDepth, double(build.memoryBytes) / (1024.0 * 1024.0));
-    std::printf("render     %dx%d, %d spp, %d threads: %.1f ms\n", cl.width, cl.height, cl.samplesPerPixel,
-                stats.threads, stats.renderMilliseconds);
+    const RenderSettings settings = session.settings();
+    const ConvergenceStats reached = session.convergence();
+    std::printf("render     %dx%d, %s, %d threads: %.1f ms\n", cl.width, cl.height, samplingName(settings).c_str(),
+                settings.threads > 0 ? std::min(settings.threads, workerThreadCount()) : workerThreadCount(),
+                stats.milliseconds);
+    std::printf("samples    %d min, %.2f mean, %d max per pixel; estimated error %.4f mean, %.4f max\n",
+                reached.minSamples, reached.meanSamples, reached.maxSamples, reached.meanError, reached.maxError);
     std::printf("rays       %.3f M (primary %.3f M, shadow %.3f M, reflection %.3f M, refraction %.3f M), %.2f Mrays/s\n",
                 double(stats.rays.total()) * 1e-6, double(stats.rays.primary) * 1e-6, double(stats.rays.shadow) * 1e-6,
                 double(stats.rays.reflection) * 1e-6, double(stats.rays.refraction) * 1e-6,
-                stats.raysPerSecond() * 1e-6);
-    if (!lenses.lenses.isEmpty()) printLensCosts(lenses.lenses, policies, stats);
+                stats.milliseconds > 0 ? double(stats.rays.total()) / (stats.milliseconds * 1e3) : 0.0);
+    if (!lenses.lenses.isEmpty()) printLensCosts(lenses.lenses, session.policyMap(), stats);
     if (!cl.saveLensesFile.empty()) std::printf("saved      %s\n", cl.saveLensesFile.c_str());
     std::printf("wrote      %s\n", output.c_str());
     return kExitOk;

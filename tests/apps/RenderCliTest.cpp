@@ -39,7 +39,10 @@ TEST(RenderCli, HelpAndVersionExitZero) {
 TEST(RenderCli, BadArgumentsExitTwoWithOneLineError) {
     for (const char *args : {"", "--bogus builtin:onion", "builtin:onion --spp 0", "builtin:onion --size 10",
                              "builtin:onion --eye 1,2", "builtin:onion --fov 200", "a.glb b.glb",
-                             "builtin:onion --threads"}) {
+                             "builtin:onion --threads", "builtin:onion --adaptive --target-error -1",
+                             "builtin:onion --target-error x", "builtin:onion --time-limit 0",
+                             "builtin:onion --max-spp 0", "builtin:onion --spp 8 --max-spp 4",
+                             "builtin:onion --time-limit inf"}) {
         const CommandResult r = runRender(args);
         EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
         EXPECT_NE(r.output.find("mvcl-render: command line:"), std::string::npos) << args << "\n" << r.output;
@@ -83,6 +86,25 @@ TEST(RenderCli, DefaultSceneRendersAndReportsThroughput) {
         EXPECT_NE(r.output.find(key), std::string::npos) << key << "\n" << r.output;
     ASSERT_TRUE(fs::exists(out));
     EXPECT_GT(imageVariance(mvcl::readImage(out)), 1e-4);
+}
+
+TEST(RenderCli, AdaptiveRenderReportsSamplesReachedAndEstimatedError) {
+    const fs::path out = outDir() / "adaptive.png";
+    const CommandResult r =
+        runRender("builtin:cube-in-cube --size 80x60 --spp 2 --adaptive --max-spp 32 --target-error 0.02 -o " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("adaptive 2..32 spp, target error 0.02"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("samples    2 min,"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("32 max per pixel; estimated error"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(out));
+}
+
+TEST(RenderCli, TimeLimitStopsAProgressiveRender) {
+    const CommandResult r = runRender("builtin:cube-in-cube --size 64x48 --time-limit 0.2 --max-spp 100000 -o " +
+                                      (outDir() / "time-limit.png").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("progressive 1..100000 spp"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("100000 max per pixel"), std::string::npos) << "the time limit did not stop it\n" << r.output;
 }
 
 TEST(RenderCli, FileCamerasAreSelectableByIndex) {

@@ -133,6 +133,7 @@ struct RenderSession::Private {
     std::mutex imageMutex;
     Framebuffer published;
     PixelRect publishedChanged;
+    std::function<void(float)> progress;
     mutable std::mutex statsMutex;
     RenderPassStats last;
     uint64_t passes = 0;
@@ -162,6 +163,7 @@ struct RenderSession::Private {
     uint32_t samplesWanted() const;
     bool wantsSamples(int x, int y) const;
     void updateActive(const PixelRect &area);
+    void updateActiveTiles(const std::vector<int> &tiles);
     uint32_t minActiveCount() const;
     bool timeIsUp() const {
         return settings.sampling != SamplingMode::Fixed && settings.timeLimitSeconds > 0.0 &&
@@ -205,8 +207,7 @@ void RenderSession::Private::restartPixels(const PixelRect &area, const std::vec
             errors[i] = INFINITY;
         }
     });
-    // Neighbours of restarted pixels may want samples again (adaptive dilation).
-    updateActive(clipTo({area.x0 - 1, area.y0 - 1, area.x1 + 1, area.y1 + 1}, width(), height()));
+    updateActive(area);
 }
 
 uint32_t RenderSession::Private::samplesWanted() const {
@@ -235,23 +236,28 @@ bool RenderSession::Private::wantsSamples(int x, int y) const {
 
 void RenderSession::Private::updateActive(const PixelRect &area) {
     if (area.isEmpty()) return;
-    const int w = width();
-    parallelFor(size_t(area.y1 - area.y0), threads(), [&](size_t row) {
-        const int y = area.y0 + int(row);
-        for (int x = area.x0; x < area.x1; ++x) active[size_t(y) * size_t(w) + size_t(x)] = wantsSamples(x, y);
-    });
+    // Every tile the area touches, plus one pixel around it: a pixel's wish depends on its
+    // neighbours' error estimates (dilation).
     const int ts = settings.tileSize;
-    const int tx0 = area.x0 / ts, tx1 = (area.x1 - 1) / ts, ty0 = area.y0 / ts, ty1 = (area.y1 - 1) / ts;
-    parallelFor(size_t(ty1 - ty0 + 1) * size_t(tx1 - tx0 + 1), threads(), [&](size_t k) {
-        const int tile = (ty0 + int(k) / (tx1 - tx0 + 1)) * tilesX + tx0 + int(k) % (tx1 - tx0 + 1);
-        const PixelRect r = tileRect(tile);
+    const PixelRect grown = clipTo({area.x0 - 1, area.y0 - 1, area.x1 + 1, area.y1 + 1}, width(), height());
+    std::vector<int> tiles;
+    for (int ty = grown.y0 / ts; ty <= (grown.y1 - 1) / ts; ++ty)
+        for (int tx = grown.x0 / ts; tx <= (grown.x1 - 1) / ts; ++tx) tiles.push_back(ty * tilesX + tx);
+    updateActiveTiles(tiles);
+}
+
+void RenderSession::Private::updateActiveTiles(const std::vector<int> &tiles) {
+    const int w = width();
+    parallelFor(tiles.size(), threads(), [&](size_t k) {
+        const PixelRect r = tileRect(tiles[k]);
         uint32_t fewest = kNoActivePixel;
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) {
                 const size_t i = size_t(y) * size_t(w) + size_t(x);
+                active[i] = wantsSamples(x, y);
                 if (active[i]) fewest = std::min(fewest, samples[i].count);
             }
-        tileMinCount[size_t(tile)] = fewest;
+        tileMinCount[size_t(tiles[k])] = fewest;
     });
     if (settings.sampling == SamplingMode::Progressive && settings.targetError > 0.f) {
         // Progressive stops as a whole once no pixel's estimate is above the target.
@@ -310,6 +316,7 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
 
     std::mutex merge;
     std::vector<uint8_t> tileDone(work.size(), 0);
+    size_t tilesFinished = 0;
     std::atomic<bool> stopped{false};
     const int w = width();
     const Clock::time_point start = Clock::now();
@@ -345,6 +352,7 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
         tracer.addCostsTo(stats.perPolicy);
         stats.pixelsTraced += traced;
         tileDone[k] = traced > 0;
+        if (progress) progress(float(++tilesFinished) / float(work.size()));
     });
     stats.traceMilliseconds = millisecondsBetween(start, Clock::now());
     stats.wasCancelled = stopped.load();
@@ -356,10 +364,17 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
             touchedTiles.push_back(work[k]);
             rect = unite(rect, tileRect(work[k]));
         }
+    // The touched tiles and their neighbours: dilation reaches one pixel across tile borders.
+    std::vector<uint8_t> update(tileMinCount.size(), 0);
     for (int tile : touchedTiles) {
-        const PixelRect r = tileRect(tile);
-        updateActive(clipTo({r.x0 - 1, r.y0 - 1, r.x1 + 1, r.y1 + 1}, width(), height()));
+        const int tx = tile % tilesX, ty = tile / tilesX;
+        for (int y = std::max(ty - 1, 0); y <= std::min(ty + 1, tilesY - 1); ++y)
+            for (int x = std::max(tx - 1, 0); x <= std::min(tx + 1, tilesX - 1); ++x) update[size_t(y * tilesX + x)] = 1;
     }
+    std::vector<int> updateTiles;
+    for (size_t t = 0; t < update.size(); ++t)
+        if (update[t]) updateTiles.push_back(int(t));
+    updateActiveTiles(updateTiles);
     if (!stats.wasCancelled && fewest == 0 && stats.samples > 0) {
         // Thread-time per sample at full resolution: what sizes the next camera preview.
         const double perSample = stats.traceMilliseconds * 1e6 * double(threads()) / double(stats.samples);
@@ -543,6 +558,8 @@ Camera RenderSession::camera() const {
     std::lock_guard lock(d->stagedMutex);
     return d->stagedCamera;
 }
+
+void RenderSession::setProgressCallback(std::function<void(float)> callback) { d->progress = std::move(callback); }
 
 RenderPassStats RenderSession::renderPass() { return d->renderPass(); }
 

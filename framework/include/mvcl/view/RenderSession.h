@@ -29,6 +29,7 @@
 #include <mvcl/view/RenderSettings.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -96,6 +97,10 @@ public:
     void setSettings(const RenderSettings &settings);
     RenderSettings settings() const;
     Camera camera() const;
+
+    /// Called during passes with the fraction (0..1) of the pass's tiles done, from worker
+    /// threads, serialised. Set it before passes run.
+    void setProgressCallback(std::function<void(float)> callback);
 
     /// Runs one pass on the calling thread (its work on the worker pool). Returns at once with
     /// kind Idle when there is nothing to do. Not to be mixed with start().
