@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -205,6 +206,32 @@ int main(int argc, char **argv) {
             std::sort(frames.begin(), frames.end());
             std::printf("camera orbit: median %.2f ms per frame, worst %.2f ms (preview divider up to %d, budget %.1f ms)\n",
                         frames[frames.size() / 2], frames.back(), divider, settings.previewBudgetSeconds * 1e3);
+        }
+        // Cancellation: an edit while a long refinement pass runs on the background thread;
+        // the time from the edit until that pass has returned.
+        {
+            LensStack stack = makeStack(registry, 3, false);
+            RenderSettings refine = settings;
+            refine.sampling = SamplingMode::Progressive;
+            refine.maxSamplesPerPixel = 1 << 20;
+            RenderSession session(tracer);
+            session.setSettings(refine);
+            session.setCamera(camera);
+            session.setLensStack(stack);
+            session.start();
+            std::vector<double> latencies;
+            for (int trial = 0; trial < 20; ++trial) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(30 + 7 * trial));
+                const uint64_t before = session.passCount();
+                const Clock::time_point edit = Clock::now();
+                session.setLensStack(stack);
+                while (session.passCount() == before) std::this_thread::yield();
+                latencies.push_back(millisecondsSince(edit));
+            }
+            session.stop();
+            std::sort(latencies.begin(), latencies.end());
+            std::printf("cancel: median %.2f ms, worst %.2f ms from an edit to the end of the pass in flight\n",
+                        latencies[latencies.size() / 2], latencies.back());
         }
         return 0;
     } catch (const std::exception &e) {
