@@ -123,6 +123,16 @@ struct RenderSession::Private {
     std::vector<uint8_t> changed;  ///< scratch: pixels whose policy changed
     int tilesX = 0, tilesY = 0;
     std::vector<uint32_t> tileMinCount; ///< fewest samples of an active pixel, or kNoActivePixel
+    /// Per tile, what ConvergenceStats sums: kept up to date wherever active flags are, so the
+    /// image's stats are a reduction over tiles, not pixels.
+    struct TileSummary {
+        uint32_t minCount = 0, maxCount = 0;
+        uint64_t countSum = 0;
+        double errorSum = 0.0;
+        float maxError = 0.f;
+        uint32_t withError = 0, activeCount = 0;
+    };
+    std::vector<TileSummary> tileSummaries;
     Framebuffer display;
     bool fullPassPending = true;
     Clock::time_point resetTime = Clock::now();
@@ -136,6 +146,7 @@ struct RenderSession::Private {
     std::function<void(float)> progress;
     mutable std::mutex statsMutex;
     RenderPassStats last;
+    ConvergenceStats convergence;
     uint64_t passes = 0;
 
     // --- Background thread. ---
@@ -174,7 +185,38 @@ struct RenderSession::Private {
     void previewPass(int divider, RenderPassStats &stats);
     void publish(const std::vector<int> &tiles, const PixelRect &rect);
     RenderPassStats renderPass();
+    ConvergenceStats summarise() const;
+    std::vector<LensCost> lensCosts(const std::vector<PolicyCost> &perPolicy) const;
 };
+
+ConvergenceStats RenderSession::Private::summarise() const {
+    ConvergenceStats c;
+    if (tileSummaries.empty()) return c;
+    c.minSamples = std::numeric_limits<int>::max();
+    uint64_t countSum = 0, withError = 0;
+    double errorSum = 0.0;
+    for (const TileSummary &t : tileSummaries) {
+        c.minSamples = std::min(c.minSamples, int(t.minCount));
+        c.maxSamples = std::max(c.maxSamples, int(t.maxCount));
+        countSum += t.countSum;
+        errorSum += t.errorSum;
+        withError += t.withError;
+        c.maxError = std::max(c.maxError, double(t.maxError));
+        c.activePixels += t.activeCount;
+    }
+    c.meanSamples = double(countSum) / double(pixelCount());
+    c.meanError = withError ? errorSum / double(withError) : 0.0;
+    c.elapsedSeconds = std::chrono::duration<double>(Clock::now() - resetTime).count();
+    c.isConverged = !needsSamples.load();
+    if (!c.isConverged && minActiveCount() == kNoActivePixel) c.activePixels = 0;
+    return c;
+}
+
+std::vector<LensCost> RenderSession::Private::lensCosts(const std::vector<PolicyCost> &perPolicy) const {
+    LensStack stack;
+    for (const detail::LensState &l : lenses) stack.add(l.lens);
+    return stack.costs(map, perPolicy);
+}
 
 bool RenderSession::Private::hasWorkLocked() const {
     if (editCount != appliedEdits) return true;
@@ -193,6 +235,7 @@ void RenderSession::Private::resize() {
     tilesX = (width() + settings.tileSize - 1) / settings.tileSize;
     tilesY = (height() + settings.tileSize - 1) / settings.tileSize;
     tileMinCount.assign(size_t(tilesX) * size_t(tilesY), 0);
+    tileSummaries.assign(tileMinCount.size(), {});
     display = Framebuffer(width(), height());
 }
 
@@ -251,13 +294,28 @@ void RenderSession::Private::updateActiveTiles(const std::vector<int> &tiles) {
     parallelFor(tiles.size(), threads(), [&](size_t k) {
         const PixelRect r = tileRect(tiles[k]);
         uint32_t fewest = kNoActivePixel;
+        TileSummary summary;
+        summary.minCount = kNoActivePixel;
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) {
                 const size_t i = size_t(y) * size_t(w) + size_t(x);
                 active[i] = wantsSamples(x, y);
-                if (active[i]) fewest = std::min(fewest, samples[i].count);
+                const uint32_t count = samples[i].count;
+                if (active[i]) {
+                    fewest = std::min(fewest, count);
+                    ++summary.activeCount;
+                }
+                summary.minCount = std::min(summary.minCount, count);
+                summary.maxCount = std::max(summary.maxCount, count);
+                summary.countSum += count;
+                if (count >= 2) {
+                    summary.errorSum += errors[i];
+                    summary.maxError = std::max(summary.maxError, errors[i]);
+                    ++summary.withError;
+                }
             }
         tileMinCount[size_t(tiles[k])] = fewest;
+        tileSummaries[size_t(tiles[k])] = summary;
     });
     if (settings.sampling == SamplingMode::Progressive && settings.targetError > 0.f) {
         // Progressive stops as a whole once no pixel's estimate is above the target.
@@ -511,9 +569,12 @@ RenderPassStats RenderSession::Private::renderPass() {
     } else {
         tracePass(stats);
     }
+    if (!lenses.empty()) stats.perLens = lensCosts(stats.perPolicy);
     stats.milliseconds = millisecondsBetween(passStart, Clock::now());
+    const ConvergenceStats reached = summarise();
     std::lock_guard lock(statsMutex);
     last = stats;
+    convergence = reached;
     ++passes;
     return stats;
 }
@@ -652,27 +713,10 @@ bool RenderSession::copyImage(Framebuffer &target, PixelRect &changed) {
 }
 
 ConvergenceStats RenderSession::convergence() const {
-    ConvergenceStats c;
-    if (d->samples.empty()) return c;
-    c.minSamples = std::numeric_limits<int>::max();
-    double sampleSum = 0.0, errorSum = 0.0;
-    uint64_t withError = 0;
-    for (size_t i = 0; i < d->samples.size(); ++i) {
-        const uint32_t n = d->samples[i].count;
-        c.minSamples = std::min(c.minSamples, int(n));
-        c.maxSamples = std::max(c.maxSamples, int(n));
-        sampleSum += n;
-        if (n >= 2) {
-            errorSum += d->errors[i];
-            c.maxError = std::max(c.maxError, double(d->errors[i]));
-            ++withError;
-        }
-        c.activePixels += d->active[i] && n < d->samplesWanted();
-    }
-    c.meanSamples = sampleSum / double(d->samples.size());
-    c.meanError = withError ? errorSum / double(withError) : 0.0;
+    std::lock_guard lock(d->statsMutex);
+    ConvergenceStats c = d->convergence;
+    if (c.isConverged) return c; // elapsed stops with the work
     c.elapsedSeconds = std::chrono::duration<double>(Clock::now() - d->resetTime).count();
-    c.isConverged = !d->needsSamples.load();
     return c;
 }
 

@@ -21,6 +21,7 @@
 /// framework's worker pool.
 
 #include <mvcl/lens/LensRegion.h>
+#include <mvcl/lens/LensStack.h>
 #include <mvcl/lens/PolicyCost.h>
 #include <mvcl/tracer/RayCounters.h>
 #include <mvcl/tracer/RayPolicy.h>
@@ -35,7 +36,6 @@
 
 namespace mvcl {
 
-class LensStack;
 class PolicyMap;
 class Tracer;
 
@@ -63,6 +63,7 @@ struct RenderPassStats {
     double milliseconds = 0.0;        ///< the whole pass (wall clock)
     PixelRect updated;                ///< bounding box of the display pixels this pass changed
     std::vector<PolicyCost> perPolicy; ///< cost per entry of policyMap() (same index)
+    std::vector<LensCost> perLens;     ///< cost of the pixels under each lens of the stack
 };
 
 /// The state of the accumulated image (not of a preview on display).
@@ -131,9 +132,10 @@ public:
     /// publishing at that moment.
     bool copyImage(Framebuffer &target, PixelRect &changed);
 
-    /// The accumulated state (thread that runs the passes, or after stop()).
+    /// The accumulated state as of the end of the last pass (any thread).
     ConvergenceStats convergence() const;
-    /// Per-pixel sample counts and estimated errors of the accumulated image (row-major).
+    /// Per-pixel sample counts and estimated errors of the accumulated image (row-major; the
+    /// thread that runs the passes, or after stop()).
     std::vector<uint32_t> sampleCounts() const;
     std::vector<float> errorEstimates() const;
     /// The policy map the accumulated samples were taken under.
