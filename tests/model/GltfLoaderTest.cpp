@@ -270,6 +270,23 @@ TEST(GltfLayers, ExtrasThenRulesThenUnassigned) {
     EXPECT_NE(loadError(w).find("extras.layer"), std::string::npos) << loadError(w);
 }
 
+TEST(GltfNames, NodeNameKeptAsWrittenBesideTheDisplayName) {
+    GltfWriter w;
+    const int pos = w.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const int named = w.mesh({{"attributes", {{"POSITION", pos}}}}, "organMesh");
+    const int anonymous = w.mesh({{"attributes", {{"POSITION", pos}}}});
+    w.scene({w.node({{"mesh", named}, {"name", "kidneyNode"}}), w.node({{"mesh", named}}),
+             w.node({{"mesh", anonymous}})});
+    const Scene s = w.load();
+    ASSERT_EQ(s.meshes.size(), 3u);
+    EXPECT_EQ(s.meshes[0].nodeName, "kidneyNode");
+    EXPECT_EQ(s.meshes[0].name, "kidneyNode");
+    EXPECT_EQ(s.meshes[1].nodeName, "") << "a node without a name stays without one";
+    EXPECT_EQ(s.meshes[1].name, "organMesh") << "the display name falls back to the mesh name";
+    EXPECT_EQ(s.meshes[2].nodeName, "");
+    EXPECT_EQ(s.meshes[2].name, "node 2");
+}
+
 TEST(GltfMaterials, PbrMappedToPhongAndDefaultMaterial) {
     GltfWriter w;
     const int pos = w.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});

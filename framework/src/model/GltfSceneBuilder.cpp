@@ -367,6 +367,7 @@ void GltfSceneBuilder::instantiateMesh(int node, const glm::dmat4 &world) {
         auto [it, inserted] = groups.try_emplace({material, hasNormals}, m_pending.size());
         if (inserted) {
             PendingMesh pm;
+            pm.mesh.nodeName = nd.name;
             pm.mesh.meshName = gm.name;
             pm.mesh.name = !nd.name.empty() ? nd.name : !gm.name.empty() ? gm.name : "node " + std::to_string(node);
             pm.mesh.material = material;

@@ -21,7 +21,8 @@ enum class LayerSource : uint8_t {
 };
 
 struct TriangleMesh {
-    std::string name;      ///< node name, or mesh name when the node has none
+    std::string name;      ///< node name, or mesh name when the node has none (for display)
+    std::string nodeName;  ///< glTF node name as written (may be empty; empty for built-ins)
     std::string meshName;  ///< glTF mesh name (may be empty)
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;  ///< empty, or one unit normal per position
