@@ -49,12 +49,12 @@ void PolicyMap::setPixelBlend(int x, int y, std::span<const PolicyTerm> terms) {
     m_mixes.push_back({first, uint32_t(kept)});
 }
 
-const PixelPolicy &PolicyMap::dominantPolicy(int x, int y) const {
+uint16_t PolicyMap::dominantPolicyIndex(int x, int y) const {
     const std::span<const PolicyTerm> mix = terms(x, y);
     const auto best = std::max_element(mix.begin(), mix.end(), [](const PolicyTerm &a, const PolicyTerm &b) {
         return a.weight < b.weight;
     });
-    return m_policies[best->policy];
+    return best->policy;
 }
 
 std::size_t PolicyMap::blendedPixelCount() const {

@@ -7,22 +7,13 @@
 
 namespace mvcl {
 
-namespace {
-
-Ray primaryRay(const PixelPolicy &policy, const Camera &camera, int x, int y, int width, int height) {
-    const glm::vec2 sample = policy.samplePosition({float(x) + 0.5f, float(y) + 0.5f}, width, height);
-    return camera.generateRay(sample.x, sample.y, width, height);
-}
-
-} // namespace
-
 PixelProbe::PixelProbe(const LensStack &stack, int width, int height, const RayPolicy &base)
     : m_map(stack.compose(base, width, height)) {}
 
 std::optional<Hit> PixelProbe::primaryHit(const Tracer &tracer, const Camera &camera, int x, int y) const {
     const PixelPolicy &p = policy(x, y);
     Hit hit;
-    if (!tracer.closestHit(primaryRay(p, camera, x, y, m_map.width(), m_map.height()),
+    if (!tracer.closestHit(pixelCentreRay(camera, p, x, y, m_map.width(), m_map.height()),
                            p.ray.query(RayType::Primary), hit))
         return std::nullopt;
     return hit;
@@ -34,13 +25,17 @@ std::optional<int> PixelProbe::primaryHitLayer(const Tracer &tracer, const Camer
     return hit->kind == GeometryKind::Triangle ? int(tracer.scene().meshes[hit->geometry].layer) : -1;
 }
 
+PickResult PixelProbe::pick(const Tracer &tracer, const Camera &camera, int x, int y) const {
+    return mvcl::pick(tracer, camera, m_map, x, y);
+}
+
 glm::vec3 PixelProbe::radiance(const Tracer &tracer, const Camera &camera, int x, int y) const {
     const WhittedIntegrator integrator(tracer);
     RayCounters rays;
     glm::vec3 sum(0.f);
     for (const PolicyTerm &term : m_map.terms(x, y)) {
         const PixelPolicy &p = m_map.policy(term.policy);
-        sum += term.weight * integrator.radiance(primaryRay(p, camera, x, y, m_map.width(), m_map.height()), p.ray, rays);
+        sum += term.weight * integrator.radiance(pixelCentreRay(camera, p, x, y, m_map.width(), m_map.height()), p.ray, rays);
     }
     return sum;
 }

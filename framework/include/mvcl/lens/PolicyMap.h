@@ -47,8 +47,9 @@ public:
         const Mix &mix = m_mixes[m_mixOfPixel[offset(x, y)]];
         return {m_terms.data() + mix.first, mix.count};
     }
-    /// The policy with the largest weight at the pixel.
-    const PixelPolicy &dominantPolicy(int x, int y) const;
+    /// The policy with the largest weight at the pixel (the first of equal weights).
+    const PixelPolicy &dominantPolicy(int x, int y) const { return m_policies[dominantPolicyIndex(x, y)]; }
+    uint16_t dominantPolicyIndex(int x, int y) const;
     /// Index of the pixel's mix; pixels with equal indices render with the same policies.
     uint32_t mixIndex(int x, int y) const { return m_mixOfPixel[offset(x, y)]; }
     /// Number of pixels that blend two or more policies.

@@ -9,6 +9,7 @@
 
 #include <mvcl/lens/LensStack.h>
 #include <mvcl/tracer/Hit.h>
+#include <mvcl/view/Picking.h>
 
 #include <optional>
 #include <span>
@@ -36,6 +37,9 @@ public:
     /// Layer of the mesh the primary ray hits, -1 for spheres/planes, nullopt for a miss.
     std::optional<int> primaryHitLayer(const Tracer &tracer, const Camera &camera, int x,
                                        int y) const;
+    /// Everything about the primary hit (names, distance, world position, normals); see
+    /// Picking.h. Same ray and query as primaryHit().
+    PickResult pick(const Tracer &tracer, const Camera &camera, int x, int y) const;
     /// Radiance of one sample through the pixel centre, blended over the pixel's terms.
     glm::vec3 radiance(const Tracer &tracer, const Camera &camera, int x, int y) const;
 
