@@ -1,5 +1,5 @@
 #pragma once
-// Runs mvcl-render as a user does, for the CLI tests: a shell command, exit code and output.
+// Runs the apps as a user does, for the CLI and viewer tests: a shell command, exit code and output.
 
 #include <array>
 #include <cstdio>
@@ -14,9 +14,9 @@ struct CommandResult {
     std::string output; // stdout and stderr together
 };
 
-/// `args` go to a shell, so quote paths with quoted().
-inline CommandResult runRender(const std::string &args) {
-    const std::string cmd = std::string(MVCL_RENDER_EXE) + " --no-progress " + args + " 2>&1";
+/// Runs a shell command line; stdout and stderr are collected together.
+inline CommandResult runCommand(const std::string &commandLine) {
+    const std::string cmd = commandLine + " 2>&1";
     CommandResult r;
     FILE *pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;
@@ -25,6 +25,11 @@ inline CommandResult runRender(const std::string &args) {
     const int status = pclose(pipe);
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
+}
+
+/// `args` go to a shell, so quote paths with quoted().
+inline CommandResult runRender(const std::string &args) {
+    return runCommand(std::string(MVCL_RENDER_EXE) + " --no-progress " + args);
 }
 
 /// A scratch folder shared by the CLI tests.
