@@ -84,6 +84,11 @@ Options:
       --save-lenses FILE  write the effective scene, camera, layer rules and lenses as a lens-stack file
       --list-lenses       list the lens types found and their properties, then exit
       --info              load and validate only; print meshes, triangles, layers, bounds
+      --no-default-lights a model file without lights stays unlit (ambient only) instead of
+                          getting the default key and fill lights
+      --force-all-stages  run every integrator stage even where the scene and lenses do not need
+                          it (shadow rays nothing can block, ...), to measure what skipping saves;
+                          the image is the same
       --no-progress       no progress bar on stderr
   -h, --help              this text
       --version           version
@@ -104,6 +109,8 @@ RenderCommandLine parseRenderCommandLine(const std::vector<std::string> &args) {
         else if (a == "--version") cl.version = true;
         else if (a == "--info") cl.info = true;
         else if (a == "--no-progress") cl.progress = false;
+        else if (a == "--force-all-stages") cl.forceAllStages = true;
+        else if (a == "--no-default-lights") cl.defaultLights = false;
         else if (a == "-o" || a == "--output") cl.output = value();
         else if (a == "--size") {
             const std::string &s = value();

@@ -46,6 +46,8 @@ struct RenderCommandLine {
     bool help = false;
     bool version = false;
     bool progress = true;
+    bool forceAllStages = false;     ///< run every integrator stage, needed or not (--force-all-stages)
+    bool defaultLights = true;       ///< light a file without lights with the default rig (--no-default-lights)
 };
 
 /// Whether samples accumulate past --spp: --adaptive, or any of the budgets.

@@ -174,6 +174,7 @@ RenderSettings renderSettings(const RenderCommandLine &cl) {
     s.samplesPerPixel = cl.samplesPerPixel;
     s.threads = cl.threads;
     s.seed = cl.seed;
+    s.skipUnneededStages = !cl.forceAllStages;
     s.previewBudgetSeconds = 0.0; // nothing moves in a batch render
     if (isRefining(cl)) {
         s.sampling = cl.adaptive ? SamplingMode::Adaptive : SamplingMode::Progressive;
@@ -203,6 +204,21 @@ std::string samplingName(const RenderSettings &s) {
     return text;
 }
 
+/// What the integrator left out, and the rays that saved against forcing every stage.
+void printSkippedStages(const RayCounters &rays, const RenderSettings &settings) {
+    if (!settings.skipUnneededStages) {
+        std::printf("skipped    nothing: every stage forced (--force-all-stages)\n");
+        return;
+    }
+    const uint64_t forced = rays.total() + rays.skippedShadowRays;
+    std::printf("skipped    %.3f M shadow rays (lights nothing can block), %.3f M transparent walks (any-hit instead), "
+                "%.3f M secondary checks, %.3f M identity colour maps: %.3f M rays saved (%.1f %% of %.3f M)\n",
+                double(rays.skippedShadowRays) * 1e-6, double(rays.skippedTransparentWalks) * 1e-6,
+                double(rays.skippedSecondaryChecks) * 1e-6, double(rays.skippedColorMaps) * 1e-6,
+                double(rays.skippedShadowRays) * 1e-6,
+                forced > 0 ? 100.0 * double(rays.skippedShadowRays) / double(forced) : 0.0, double(forced) * 1e-6);
+}
+
 int run(const RenderCommandLine &cl) {
     LensRegistry registry;
     for (const Error &skipped : registry.loadModules(LensRegistry::defaultSearchPath()))
@@ -227,6 +243,7 @@ int run(const RenderCommandLine &cl) {
         const LayerRules fileRules = LayerRules::fromJsonFile(cl.layerRulesFile);
         for (const LayerRule &rule : fileRules.rules()) loadOptions.layerRules.add(rule);
     }
+    loadOptions.defaultLights = cl.defaultLights ? DefaultLights::WhenTheFileHasNone : DefaultLights::Never;
     // The lens file's rules come last: the first matching rule wins, so the command line's win.
     for (const LayerRule &rule : lenses.layerRules.rules()) loadOptions.layerRules.add(rule);
 
@@ -290,6 +307,7 @@ int run(const RenderCommandLine &cl) {
                 double(stats.rays.total()) * 1e-6, double(stats.rays.primary) * 1e-6, double(stats.rays.shadow) * 1e-6,
                 double(stats.rays.reflection) * 1e-6, double(stats.rays.refraction) * 1e-6,
                 stats.milliseconds > 0 ? double(stats.rays.total()) / (stats.milliseconds * 1e3) : 0.0);
+    printSkippedStages(stats.rays, settings);
     if (!lenses.lenses.isEmpty()) printLensCosts(lenses.lenses, session.policyMap(), stats);
     if (!cl.saveLensesFile.empty()) std::printf("saved      %s\n", cl.saveLensesFile.c_str());
     std::printf("wrote      %s\n", output.c_str());

@@ -132,6 +132,38 @@ TEST(RenderCli, LayerRulesOverrideInference) {
     EXPECT_NE(badFile.output.find("bad-rules.json"), std::string::npos) << badFile.output;
 }
 
+TEST(RenderCli, ForcingEveryStageGivesTheSameImageAndReportsNothingSkipped) {
+    // A shadow lens whose casters exist nowhere: skipping leaves its shadow rays out.
+    const std::string args = "builtin:cube-in-cube --size 96x72 --spp 1 --lens "
+                             "'shadow:shape=rectangle,center=[0.5,0.5],size=[0.6,0.6],casters=none'";
+    const fs::path skipped = outDir() / "stages-skipped.exr";
+    const fs::path forced = outDir() / "stages-forced.exr";
+    const CommandResult skipping = runRender(args + " -o " + skipped.string());
+    ASSERT_EQ(skipping.exitCode, 0) << skipping.output;
+    const CommandResult forcing = runRender(args + " --force-all-stages -o " + forced.string());
+    ASSERT_EQ(forcing.exitCode, 0) << forcing.output;
+    EXPECT_NE(skipping.output.find("skipped    "), std::string::npos) << skipping.output;
+    EXPECT_NE(skipping.output.find("M rays saved"), std::string::npos) << skipping.output;
+    EXPECT_EQ(skipping.output.find("skipped    0.000 M shadow rays"), std::string::npos) << skipping.output;
+    EXPECT_NE(forcing.output.find("skipped    nothing: every stage forced"), std::string::npos) << forcing.output;
+    const mvcl::Framebuffer a = mvcl::readImage(skipped), b = mvcl::readImage(forced);
+    EXPECT_EQ(a.pixels(), b.pixels());
+}
+
+TEST(RenderCli, NoDefaultLightsLeavesAFileWithoutLightsUnlit) {
+    const std::string box = quoted(dataPath("models/Box/Box.glb"));
+    const CommandResult lit = runRender(box + " --info");
+    ASSERT_EQ(lit.exitCode, 0) << lit.output;
+    EXPECT_NE(lit.output.find("2 lights"), std::string::npos) << lit.output;
+    const CommandResult unlit = runRender(box + " --no-default-lights --info");
+    ASSERT_EQ(unlit.exitCode, 0) << unlit.output;
+    EXPECT_NE(unlit.output.find("0 lights"), std::string::npos) << unlit.output;
+    const CommandResult render = runRender(box + " --no-default-lights --size 32x24 --spp 1 -o " +
+                                           (outDir() / "box-unlit.png").string());
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    EXPECT_NE(render.output.find("shadow 0.000 M"), std::string::npos) << render.output;
+}
+
 TEST(RenderCli, UnwritableOutputExitsThree) {
     const CommandResult r = runRender("builtin:onion --size 8x8 -o /proc/forbidden/x.png");
     EXPECT_EQ(r.exitCode, 3) << r.output;

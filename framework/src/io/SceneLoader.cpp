@@ -49,7 +49,8 @@ Scene loadScene(std::string_view source, const SceneLoadOptions &options) {
         GltfLoadOptions gltfOptions;
         gltfOptions.layerRules = options.layerRules;
         scene = loadGltf(path, gltfOptions);
-        if (scene.lights.empty()) addDefaultLights(scene);
+        if (scene.lights.empty() && options.defaultLights == DefaultLights::WhenTheFileHasNone)
+            addDefaultLights(scene);
     }
     const bool anyUnassigned = std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const TriangleMesh &m) {
         return m.layerSource == LayerSource::Unassigned;

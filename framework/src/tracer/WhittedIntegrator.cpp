@@ -38,6 +38,9 @@ uint32_t materialOf(const Scene &scene, const Hit &hit) {
     return 0;
 }
 
+/// The layer the tracer files a geometry under (it clamps out-of-range layers the same way).
+int layerOfGeometry(int layer) { return std::clamp(layer, 0, kMaxLayers - 1); }
+
 void countRay(RayType type, RayCounters &counters) {
     switch (type) {
     case RayType::Primary: ++counters.primary; break;
@@ -50,17 +53,69 @@ void countRay(RayType type, RayCounters &counters) {
 } // namespace
 
 WhittedIntegrator::WhittedIntegrator(const Tracer &tracer) : m_tracer(tracer) {
-    for (const Material &m : tracer.scene().materials)
+    const Scene &scene = tracer.scene();
+    for (const Material &m : scene.materials)
         if (m.transparency > 0.f) m_hasTransparentMaterials = true;
+    // Per layer, what its geometry's materials may do. "Not ≤ 0" rather than "> 0" mirrors the
+    // tests in trace(), so that a NaN weight counts as one that may be needed.
+    auto addGeometry = [&](int layer, uint32_t material) {
+        const uint32_t bit = layerBit(layerOfGeometry(layer));
+        m_layersWithGeometry |= bit;
+        // An index past the table is not expected from a loader; assume it may do anything.
+        const bool known = material < scene.materials.size();
+        if (!known || !(scene.materials[material].reflectivity <= 0.f)) m_layersWithReflectiveMaterial |= bit;
+        if (!known || !(scene.materials[material].transparency <= 0.f)) m_layersWithTransmissiveMaterial |= bit;
+    };
+    for (const TriangleMesh &mesh : scene.meshes) addGeometry(mesh.layer, mesh.material);
+    for (const Sphere &sphere : scene.spheres) addGeometry(sphere.layer, sphere.material);
+    for (const Plane &plane : scene.planes) addGeometry(plane.layer, plane.material);
+}
+
+IntegratorPlan WhittedIntegrator::plan(const RayPolicy &policy, StageSelection selection) const {
+    const ShadingPolicy &shading = policy.shading;
+    IntegratorPlan plan;
+    if (!shading.shadows || m_tracer.scene().lights.empty())
+        plan.forcedShadows = ShadowStage::Off;
+    else
+        plan.forcedShadows = m_hasTransparentMaterials ? ShadowStage::TransparentWalk : ShadowStage::AnyHit;
+    plan.shadows = plan.forcedShadows;
+    if (selection == StageSelection::ForceAll) return plan; // every stage, every colour map
+
+    if (plan.forcedShadows != ShadowStage::Off) {
+        const RayQuery &shadowQuery = policy.query(RayType::Shadow);
+        // Clip volumes and the t-range only remove hits, so without geometry in the mask no
+        // shadow ray can hit anything whatever they say. The integrator only lowers tMax, so a
+        // range that is empty in the policy is empty for every light (and the tracer misses).
+        const uint32_t casters = m_layersWithGeometry & shadowQuery.layerMask;
+        if (casters == 0 || shadowQuery.tMin > shadowQuery.tMax)
+            plan.shadows = ShadowStage::Unoccluded;
+        else if ((casters & m_layersWithTransmissiveMaterial) == 0)
+            // Every possible occluder is opaque: the walk would stop at its first hit with 0,
+            // which is exactly the any-hit answer.
+            plan.shadows = ShadowStage::AnyHit;
+    }
+
+    // The secondary stage runs at a hit only below the depth limit and where the material's
+    // reflection or refraction weight under the policy is not ≤ 0 (a transmissive material also
+    // reflects its Fresnel share, so it counts even with reflections off).
+    const uint32_t mayReflectOrRefract = (shading.reflections ? m_layersWithReflectiveMaterial : 0u) |
+                                         (shading.refractions ? m_layersWithTransmissiveMaterial : 0u);
+    plan.secondaryRayTypes = 0;
+    if (std::min(shading.maxDepth, kDepthCeiling) > 0)
+        for (const RayType type : {RayType::Primary, RayType::Reflection, RayType::Refraction})
+            if ((policy.query(type).layerMask & mayReflectOrRefract) != 0) plan.secondaryRayTypes |= rayTypeBit(type);
+
+    plan.appliesColorMap = !policy.color.isIdentity();
+    return plan;
 }
 
 float WhittedIntegrator::lightPassing(const Ray &shadowRay, float lightDistance,
-                                      const RayPolicy &policy, RayCounters &counters) const {
+                                      const RayPolicy &policy, ShadowStage stage, RayCounters &counters) const {
     RayQuery query = policy.query(RayType::Shadow);
     query.tMax = std::min(query.tMax, lightDistance);
     countRay(RayType::Shadow, counters);
-    // Opaque scenes need only "is anything in the way" (any-hit, the cheap query).
-    if (!m_hasTransparentMaterials) return m_tracer.anyHit(shadowRay, query) ? 0.f : 1.f;
+    // Opaque occluders need only "is anything in the way" (any-hit, the cheap query).
+    if (stage != ShadowStage::TransparentWalk) return m_tracer.anyHit(shadowRay, query) ? 0.f : 1.f;
 
     // Transparent occluders let their transparency through (Whitted's transparent shadows):
     // walk the hits along the same ray, each step starting just past the previous hit.
@@ -80,8 +135,17 @@ float WhittedIntegrator::lightPassing(const Ray &shadowRay, float lightDistance,
 
 glm::vec3 WhittedIntegrator::radiance(const Ray &primaryRay, const RayPolicy &policy,
                                       RayCounters &counters) const {
-    glm::vec3 c = trace(primaryRay, RayType::Primary, 0, policy, counters);
-    if (!policy.color.isIdentity()) c = policy.color.matrix * c + policy.color.offset;
+    return radiance(primaryRay, policy, plan(policy, StageSelection::SkipUnneeded), counters);
+}
+
+glm::vec3 WhittedIntegrator::radiance(const Ray &primaryRay, const RayPolicy &policy, const IntegratorPlan &plan,
+                                      RayCounters &counters) const {
+    glm::vec3 c = trace(primaryRay, RayType::Primary, 0, policy, plan, counters);
+    // The identity map can only turn −0 into +0, and a pixel's sum of samples starts at +0.
+    if (plan.appliesColorMap)
+        c = policy.color.matrix * c + policy.color.offset;
+    else
+        ++counters.skippedColorMaps;
     // A non-finite sample would poison the whole pixel: it is counted (tests assert the count
     // stays 0) and replaced by black.
     if (isFinite(c)) return c;
@@ -89,8 +153,8 @@ glm::vec3 WhittedIntegrator::radiance(const Ray &primaryRay, const RayPolicy &po
     return glm::vec3(0.f);
 }
 
-glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth,
-                                   const RayPolicy &policy, RayCounters &counters) const {
+glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, const RayPolicy &policy,
+                                   const IntegratorPlan &plan, RayCounters &counters) const {
     const Scene &scene = m_tracer.scene();
     countRay(type, counters);
     Hit hit;
@@ -129,9 +193,15 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth,
         if (nDotL <= 0.f || glm::dot(ng, toLight) <= 0.f) continue;
 
         glm::vec3 transmittance(1.f);
-        if (shading.shadows) {
-            const Ray shadowRay{offsetRayOrigin(si.position, si.positionError, ng, toLight), toLight};
-            const float passed = lightPassing(shadowRay, distance, policy, counters);
+        if (plan.shadows != ShadowStage::Off) {
+            float passed = 1.f; // what a shadow ray that hits nothing answers
+            if (plan.shadows == ShadowStage::Unoccluded) {
+                ++counters.skippedShadowRays;
+            } else {
+                const Ray shadowRay{offsetRayOrigin(si.position, si.positionError, ng, toLight), toLight};
+                passed = lightPassing(shadowRay, distance, policy, plan.shadows, counters);
+                if (plan.shadows != plan.forcedShadows) ++counters.skippedTransparentWalks;
+            }
             // The blocked share of the light is dimmed by the policy's strength and tint.
             const glm::vec3 blocked = glm::mix(glm::vec3(1.f), shading.shadowTint, shading.shadowStrength);
             transmittance = glm::vec3(passed) + (1.f - passed) * blocked;
@@ -147,6 +217,10 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth,
     float reflectWeight = shading.reflections ? m.reflectivity : 0.f;
     float refractWeight = shading.refractions ? m.transparency : 0.f;
     glm::vec3 color = local * (1.f - std::clamp(m.transparency, 0.f, 1.f));
+    if ((plan.secondaryRayTypes & rayTypeBit(type)) == 0) {
+        ++counters.skippedSecondaryChecks;
+        return color;
+    }
     if (depth >= maxDepth || (reflectWeight <= 0.f && refractWeight <= 0.f)) return color;
 
     const float cosI = -glm::dot(ns, d);
@@ -165,13 +239,13 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth,
             refractWeight *= 1.f - fresnel;
             const glm::vec3 t = glm::normalize(eta * d + (eta * cosI - cosT) * ns);
             const Ray refractRay{offsetRayOrigin(si.position, si.positionError, ng, t), t};
-            refracted = trace(refractRay, RayType::Refraction, depth + 1, policy, counters);
+            refracted = trace(refractRay, RayType::Refraction, depth + 1, policy, plan, counters);
         }
     }
     if (reflectWeight > 0.f) {
         const glm::vec3 r = d - 2.f * glm::dot(ns, d) * ns;
         const Ray reflectRay{offsetRayOrigin(si.position, si.positionError, ng, r), r};
-        color += reflectWeight * trace(reflectRay, RayType::Reflection, depth + 1, policy, counters);
+        color += reflectWeight * trace(reflectRay, RayType::Reflection, depth + 1, policy, plan, counters);
     }
     return color + refractWeight * refracted;
 }

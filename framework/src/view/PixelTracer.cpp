@@ -43,9 +43,13 @@ float PixelSamples::relativeError() const {
 }
 
 PixelTracer::PixelTracer(const WhittedIntegrator &integrator, const Camera &camera, const PolicyMap &map,
-                         uint32_t seed)
+                         uint32_t seed, StageSelection stages)
     : m_integrator(integrator), m_camera(camera), m_map(map), m_seed(seed),
-      m_costs(map.policies().size()), m_nanoseconds(map.policies().size(), 0), m_runStart(Clock::now()) {}
+      m_costs(map.policies().size()), m_nanoseconds(map.policies().size(), 0), m_runStart(Clock::now()) {
+    // Which stages each policy needs is decided here, once, not at every ray.
+    m_plans.reserve(map.policies().size());
+    for (const PixelPolicy &policy : map.policies()) m_plans.push_back(integrator.plan(policy.ray, stages));
+}
 
 void PixelTracer::chargeRun(int policy) {
     // Time is charged per run of equal policy, so the clock is read only where the policy
@@ -70,7 +74,8 @@ glm::vec3 PixelTracer::traceTerms(int x, int y, const glm::vec2 &position) {
         const PixelPolicy &policy = m_map.policy(term.policy);
         const uint64_t raysBefore = m_rays.total();
         const glm::vec2 p = policy.samplePosition(position, width, height);
-        value += term.weight * m_integrator.radiance(m_camera.generateRay(p.x, p.y, width, height), policy.ray, m_rays);
+        value += term.weight * m_integrator.radiance(m_camera.generateRay(p.x, p.y, width, height), policy.ray,
+                                                     m_plans[term.policy], m_rays);
         m_costs[term.policy].rays += m_rays.total() - raysBefore;
     }
     return value;
@@ -85,10 +90,12 @@ void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &sam
         const uint16_t index = terms[0].policy;
         chargeRun(index);
         const PixelPolicy &policy = m_map.policy(index);
+        const IntegratorPlan &plan = m_plans[index];
         const uint64_t raysBefore = m_rays.total();
         for (uint32_t k = samples.count; k < endSample; ++k) {
             const glm::vec2 p = policy.samplePosition(pixel + sampleOffset(x, y, k, m_seed), width, height);
-            const glm::vec3 value = m_integrator.radiance(m_camera.generateRay(p.x, p.y, width, height), policy.ray, m_rays);
+            const glm::vec3 value =
+                m_integrator.radiance(m_camera.generateRay(p.x, p.y, width, height), policy.ray, plan, m_rays);
             samples.sum += value;
             if ((k & 1u) == 0) samples.evenSum += value;
         }

@@ -6,6 +6,7 @@
 
 #include <mvcl/lens/PolicyCost.h>
 #include <mvcl/lens/PolicyMap.h>
+#include <mvcl/tracer/IntegratorPlan.h>
 #include <mvcl/tracer/RayCounters.h>
 #include <mvcl/tracer/WhittedIntegrator.h>
 #include <mvcl/view/Camera.h>
@@ -42,8 +43,9 @@ struct PixelSamples {
 /// policies. One per worker and pass: not thread-safe, cheap to make.
 class PixelTracer {
 public:
+    /// Plans every policy of `map` once (WhittedIntegrator::plan with `stages`).
     PixelTracer(const WhittedIntegrator &integrator, const Camera &camera, const PolicyMap &map,
-                uint32_t seed);
+                uint32_t seed, StageSelection stages);
 
     /// Adds samples [samples.count, endSample) of pixel (x, y) to `samples`, in order.
     void addSamples(int x, int y, uint32_t endSample, PixelSamples &samples);
@@ -67,6 +69,7 @@ private:
     const Camera &m_camera;
     const PolicyMap &m_map;
     uint32_t m_seed;
+    std::vector<IntegratorPlan> m_plans; ///< per policy of m_map
     RayCounters m_rays;
     uint64_t m_samples = 0;
     std::vector<PolicyCost> m_costs;

@@ -379,7 +379,7 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
     const int w = width();
     const Clock::time_point start = Clock::now();
     parallelFor(work.size(), threads(), [&](size_t k) {
-        detail::PixelTracer tracer(integrator, camera, map, settings.seed);
+        detail::PixelTracer tracer(integrator, camera, map, settings.seed, stageSelectionOf(settings));
         const PixelRect r = tileRect(work[k]);
         uint64_t traced = 0;
         for (int y = r.y0; y < r.y1 && !stopped.load(std::memory_order_relaxed); ++y) {
@@ -452,7 +452,7 @@ void RenderSession::Private::previewPass(int divider, RenderPassStats &stats) {
     std::atomic<bool> stopped{false};
     const Clock::time_point start = Clock::now();
     parallelFor(size_t(blocksY), threads(), [&](size_t by) {
-        detail::PixelTracer tracer(integrator, camera, map, settings.seed);
+        detail::PixelTracer tracer(integrator, camera, map, settings.seed, stageSelectionOf(settings));
         const int y0 = int(by) * divider, y1 = std::min(y0 + divider, h);
         for (int bx = 0; bx < blocksX; ++bx) {
             if (cancel.load(std::memory_order_relaxed)) {

@@ -46,7 +46,7 @@ RenderStats Renderer::render(const Camera &camera, const PolicyMap &policies,
     const auto start = std::chrono::steady_clock::now();
     // One task per tile; each tile writes only its own pixels.
     parallelFor(size_t(tileCount), threads, [&](size_t tile) {
-        detail::PixelTracer tracer(integrator, camera, policies, settings.seed);
+        detail::PixelTracer tracer(integrator, camera, policies, settings.seed, stageSelectionOf(settings));
         const int x0 = int(tile % size_t(tilesX)) * settings.tileSize;
         const int y0 = int(tile / size_t(tilesX)) * settings.tileSize;
         const int x1 = std::min(x0 + settings.tileSize, width);

@@ -1,19 +1,28 @@
 #pragma once
 /// \file SceneLoader.h
 /// One entry point for every scene source: "builtin:<name>", .gltf or .glb. Applies layer rules,
-/// infers the layers nobody assigned, and gives scenes without lights a default light rig.
+/// infers the layers nobody assigned, and gives model files without lights a default light rig
+/// (unless told not to).
 
 #include <mvcl/model/LayerRules.h>
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/LayerInference.h>
 
+#include <cstdint>
 #include <string_view>
 
 namespace mvcl {
 
+/// Whether a model file without lights gets the default key and fill lights.
+enum class DefaultLights : uint8_t {
+    WhenTheFileHasNone, ///< the inspection rig, so that every surface reads
+    Never,              ///< keep the file's lights as they are, none included (ambient only)
+};
+
 struct SceneLoadOptions {
     LayerRules layerRules;
     LayerInferenceSettings inference;
+    DefaultLights defaultLights = DefaultLights::WhenTheFileHasNone;
 };
 
 /// Throws mvcl::Error naming the source and the problem.

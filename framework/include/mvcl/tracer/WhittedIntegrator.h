@@ -3,13 +3,16 @@
 /// The paper's integrator: Phong (eq. 1) + shadows + mirror reflection + refraction (Snell, total
 /// internal reflection, Schlick's Fresnel), bounded depth, background colour. Shadows pass
 /// through transparent occluders scaled by their transparency (colourless). Driven per pixel by
-/// a RayPolicy (plain data).
+/// a RayPolicy (plain data) and the IntegratorPlan of that policy (which stages it needs).
 
+#include <mvcl/tracer/IntegratorPlan.h>
 #include <mvcl/tracer/Ray.h>
 #include <mvcl/tracer/RayCounters.h>
 #include <mvcl/tracer/RayPolicy.h>
 
 #include <glm/vec3.hpp>
+
+#include <cstdint>
 
 namespace mvcl {
 
@@ -17,21 +20,41 @@ class Tracer;
 
 class WhittedIntegrator {
 public:
+    /// Reads the scene's layers and materials once (O(meshes + spheres + planes + materials)),
+    /// so that plan() costs a few mask operations.
     explicit WhittedIntegrator(const Tracer &tracer);
 
-    /// Linear RGB radiance along a primary ray under `policy` (colour stage included).
+    /// The stages `policy` needs in this scene. Compute it once per policy and render pass and
+    /// pass it to every radiance() call under that policy.
+    IntegratorPlan plan(const RayPolicy &policy, StageSelection selection) const;
+
+    /// Linear RGB radiance along a primary ray under `policy` (colour stage included), running
+    /// the stages `plan` (= plan(policy, ...)) asks for.
+    glm::vec3 radiance(const Ray &primaryRay, const RayPolicy &policy, const IntegratorPlan &plan,
+                       RayCounters &counters) const;
+    /// The same, planning the policy on the spot (StageSelection::SkipUnneeded): for single rays
+    /// (tests, PixelProbe), not for rendering many rays under one policy.
     glm::vec3 radiance(const Ray &primaryRay, const RayPolicy &policy, RayCounters &counters) const;
 
 private:
     glm::vec3 trace(const Ray &ray, RayType type, int depth, const RayPolicy &policy,
-                    RayCounters &counters) const;
+                    const IntegratorPlan &plan, RayCounters &counters) const;
 
     /// Share of a light's intensity (0..1) that reaches the shadow ray's origin.
     float lightPassing(const Ray &shadowRay, float lightDistance, const RayPolicy &policy,
-                       RayCounters &counters) const;
+                       ShadowStage stage, RayCounters &counters) const;
 
     const Tracer &m_tracer;
+    /// Some material of the scene (used or not) has transparency > 0: forcing every stage walks
+    /// every shadow ray's occluders then.
     bool m_hasTransparentMaterials = false;
+    /// Layers (bit = layerBit) holding a mesh, sphere or plane.
+    uint32_t m_layersWithGeometry = 0;
+    /// Layers with geometry whose material may reflect (reflectivity not ≤ 0).
+    uint32_t m_layersWithReflectiveMaterial = 0;
+    /// Layers with geometry whose material may transmit (transparency not ≤ 0): the only ones
+    /// that can pass light into a shadow or spawn refracted rays.
+    uint32_t m_layersWithTransmissiveMaterial = 0;
 };
 
 } // namespace mvcl

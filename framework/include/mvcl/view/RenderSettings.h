@@ -1,6 +1,8 @@
 #pragma once
 /// \file RenderSettings.h
 
+#include <mvcl/tracer/IntegratorPlan.h>
+
 #include <cstdint>
 
 namespace mvcl {
@@ -37,10 +39,16 @@ struct RenderSettings {
     /// While the camera moves, a reduced-resolution preview sized to take about this long
     /// (seconds; 0 = never preview, always render full resolution).
     double previewBudgetSeconds = 1.0 / 30.0;
-    /// Leave out the stages no pixel needs (shadow rays nothing can block, secondary rays of
-    /// materials that neither reflect nor refract, identity colour maps). Off only to measure
-    /// what leaving them out saves.
+    /// Leave out the stages no pixel needs (shadow rays nothing can block, transparent-shadow
+    /// walks where no caster is transparent, secondary rays of materials that neither reflect
+    /// nor refract, identity colour maps): StageSelection::SkipUnneeded, else ForceAll. The
+    /// image is the same either way. Off only to measure what leaving them out saves.
     bool skipUnneededStages = true;
 };
+
+/// The integrator's stage selection that `settings` ask for (skipUnneededStages).
+inline StageSelection stageSelectionOf(const RenderSettings &settings) {
+    return settings.skipUnneededStages ? StageSelection::SkipUnneeded : StageSelection::ForceAll;
+}
 
 } // namespace mvcl
