@@ -232,7 +232,8 @@ std::shared_ptr<Lens> readLens(const Json &value, const LensRegistry &registry, 
 
 LensStackDescription readDescription(const Json &document, const LensRegistry &registry,
                                      const JsonLocation &where) {
-    static constexpr std::string_view kTopKeys[] = {"version", "scene", "camera", "layerRules", "lenses"};
+    static constexpr std::string_view kTopKeys[] = {"version", "scene", "camera", "layerRules", "visibleLayers",
+                                                    "lenses"};
     expectObject(document, where);
     rejectUnknownKeys(document, kTopKeys, where);
     if (document.contains("version")) {
@@ -254,6 +255,14 @@ LensStackDescription readDescription(const Json &document, const LensRegistry &r
                 LayerRules::fromJsonText(Json{{"rules", document["layerRules"]}}.dump(), where.source);
         } catch (const Error &e) {
             rulesWhere.fail(e.problem());
+        }
+    }
+    if (document.contains("visibleLayers")) {
+        const JsonLocation visibleWhere = where.key("visibleLayers");
+        try {
+            description.visibleLayers = parseLayerSet(propertyText(document["visibleLayers"], visibleWhere));
+        } catch (const Error &e) {
+            visibleWhere.fail(e.problem());
         }
     }
     if (document.contains("lenses")) {
@@ -350,6 +359,7 @@ Json descriptionJson(const LensStackDescription &description) {
             rules.push_back({{"match", rule.pattern}, {"layer", rule.layer}});
         json["layerRules"] = std::move(rules);
     }
+    if (description.visibleLayers != kAllLayers) json["visibleLayers"] = layerSetToString(description.visibleLayers);
     Json lenses = Json::array();
     for (const std::shared_ptr<Lens> &lens : description.lenses.lenses()) lenses.push_back(lensJson(*lens));
     json["lenses"] = std::move(lenses);
@@ -486,7 +496,7 @@ bool operator==(const LensStackDescription &a, const LensStackDescription &b) {
     const auto sameLens = [](const std::shared_ptr<Lens> &x, const std::shared_ptr<Lens> &y) {
         return sameCommittedLens(*x, *y);
     };
-    return a.scene == b.scene && a.camera == b.camera &&
+    return a.scene == b.scene && a.camera == b.camera && a.visibleLayers == b.visibleLayers &&
            std::ranges::equal(a.layerRules.rules(), b.layerRules.rules(), sameRule) &&
            std::ranges::equal(a.lenses.lenses(), b.lenses.lenses(), sameLens);
 }

@@ -26,12 +26,17 @@ Camera Camera::fromDesc(const CameraDesc &desc) {
 }
 
 Camera Camera::framing(const Bounds3f &bounds, float verticalFovDegrees, float aspect) {
+    return framing(bounds, verticalFovDegrees, aspect, glm::vec3(0.55f, 0.45f, 1.f), glm::vec3(0.f, 1.f, 0.f));
+}
+
+Camera Camera::framing(const Bounds3f &bounds, float verticalFovDegrees, float aspect, const glm::vec3 &towardEye,
+                       const glm::vec3 &up) {
     if (bounds.isEmpty()) return lookAt({0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, verticalFovDegrees);
     const glm::vec3 center = bounds.center();
-    const glm::vec3 toEye = glm::normalize(glm::vec3(0.55f, 0.45f, 1.f));
+    const glm::vec3 toEye = glm::length(towardEye) > 0.f ? glm::normalize(towardEye) : glm::vec3(0.f, 0.f, 1.f);
     // Orient first at unit distance, then back off until every box corner is inside both the
     // vertical and the horizontal field of view (tighter than the bounding sphere for long models).
-    const Camera oriented = lookAt(center + toEye, center, {0.f, 1.f, 0.f}, verticalFovDegrees);
+    const Camera oriented = lookAt(center + toEye, center, up, verticalFovDegrees);
     const glm::mat3 &axes = oriented.worldFromCamera(); // right, up, backward
     const float tanV = oriented.m_tanHalfFov;
     const float tanH = tanV * aspect;
@@ -46,7 +51,7 @@ Camera Camera::framing(const Bounds3f &bounds, float verticalFovDegrees, float a
         distance = std::max({distance, towardEye + x / tanH, towardEye + y / tanV});
     }
     distance = std::max(distance * 1.08f, 1e-30f);
-    return lookAt(center + distance * toEye, center, {0.f, 1.f, 0.f}, verticalFovDegrees);
+    return lookAt(center + distance * toEye, center, up, verticalFovDegrees);
 }
 
 void Camera::update() {

@@ -7,17 +7,21 @@
 ///       "scene": "builtin:cube-in-cube",
 ///       "camera": {"eye": [x,y,z], "target": [x,y,z], "up": [0,1,0], "fov": 40}  or  {"name": "cam"},
 ///       "layerRules": [{"match": "*Skin*", "layer": 0}],
+///       "visibleLayers": "0,2-",
 ///       "lenses": [{"type": "layer", "label": "reveal", "enabled": true,
 ///                   "region": {"shape": "ellipse", "center": [0.5,0.5], "size": [0.4,0.4],
 ///                              "feather": 6, "outline": 2, "outlineColor": [1,1,1]},
 ///                   "properties": {"layers": "1-", "distance": 0}}] }      // bottom → top
 ///
 /// A relative scene path is relative to the file's folder. Every key is optional except a
-/// lens's "type". Unknown keys anywhere are an error naming the
+/// lens's "type". "visibleLayers" (layer-set text, default "all") is the layers primary rays
+/// see outside every lens; it is written only when some layer is hidden, so files of views
+/// that hide nothing read the same in builds that predate it. Unknown keys anywhere are an error naming the
 /// file and the JSON path; property values are read with the property's own declaration.
 
 #include <mvcl/lens/LensStack.h>
 #include <mvcl/model/LayerRules.h>
+#include <mvcl/model/LayerTable.h>
 
 #include <glm/vec3.hpp>
 
@@ -47,10 +51,12 @@ struct LensStackDescription {
     std::string scene; ///< model path or builtin:NAME; empty = none given
     std::optional<LensStackCamera> camera;
     LayerRules layerRules;
+    /// Layers primary rays may hit outside every lens (the base policy's primary layer mask).
+    uint32_t visibleLayers = kAllLayers;
     LensStack lenses; ///< every lens committed
 };
 
-/// Equal scene, camera, rules and lenses (type, label, committed enabled/region/properties).
+/// Equal scene, camera, rules, visible layers and lenses (type, label, committed enabled/region/properties).
 bool operator==(const LensStackDescription &a, const LensStackDescription &b);
 
 /// Reads and commits a lens-stack file; a relative scene path comes back resolved against the

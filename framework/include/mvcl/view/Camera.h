@@ -22,6 +22,10 @@ public:
     static Camera fromDesc(const CameraDesc &desc);
     /// A camera that sees all of `bounds` from the front-right-above, at the given aspect ratio.
     static Camera framing(const Bounds3f &bounds, float verticalFovDegrees, float aspect);
+    /// The same from the direction `toEye` (from the bounds' centre toward the eye, any length)
+    /// with `up`: the front, top or current view direction of an interactive view.
+    static Camera framing(const Bounds3f &bounds, float verticalFovDegrees, float aspect,
+                          const glm::vec3 &toEye, const glm::vec3 &up);
 
     const glm::vec3 &eye() const { return m_eye; }
     const glm::vec3 &target() const { return m_target; }
@@ -33,6 +37,9 @@ public:
 
     /// Columns: right, up, backward (−forward), i.e. the rotation worldFromCamera.
     const glm::mat3 &worldFromCamera() const { return m_worldFromCamera; }
+
+    /// Same eye, target, up and field of view (the rest is derived from them).
+    bool operator==(const Camera &other) const = default;
 
 private:
     void update();

@@ -1,0 +1,25 @@
+#pragma once
+/// \file SessionState.h
+/// The editable state of one view as plain values — what one undo step restores and what a
+/// test compares: the camera, the visible layers and the lens stack. The scene itself (source,
+/// layer rules) is not in it: changing the scene starts a new history.
+
+#include <mvcl/controller/LensState.h>
+#include <mvcl/model/LayerTable.h>
+#include <mvcl/view/Camera.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace mvcl {
+
+struct SessionState {
+    Camera camera; ///< scene space
+    /// Layers primary rays may hit outside every lens (RayPolicy primary layerMask).
+    uint32_t visibleLayers = kAllLayers;
+    std::vector<LensState> lenses; ///< bottom → top
+
+    bool operator==(const SessionState &other) const = default;
+};
+
+} // namespace mvcl

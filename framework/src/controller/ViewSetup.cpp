@@ -1,0 +1,85 @@
+#include <mvcl/controller/ViewSetup.h>
+
+#include <mvcl/controller/ViewCoordinates.h>
+#include <mvcl/core/Error.h>
+#include <mvcl/lens/LensRegistry.h>
+
+namespace mvcl {
+
+namespace {
+
+/// The scene's camera named `name` (by name or index), or nullptr.
+const CameraDesc *findSceneCamera(const Scene &scene, const std::string &name) {
+    const CameraDesc *found = nullptr;
+    for (std::size_t i = 0; i < scene.cameras.size(); ++i)
+        if (scene.cameras[i].name == name || std::to_string(i) == name) found = &scene.cameras[i];
+    return found;
+}
+
+} // namespace
+
+ViewSetup ViewSetup::prepare(const ViewRequest &request, const LensRegistry &registry) {
+    ViewSetup setup;
+    if (!request.sessionFile.empty()) setup.session = readLensStackFile(request.sessionFile, registry);
+    for (const std::string &spec : request.lensSpecs) {
+        try { // a malformed value of the request is the request's error, not the file's
+            setup.session.lenses.add(parseLensSpec(spec, registry));
+        } catch (const Error &e) {
+            throw Error(request.origin, e.what());
+        }
+    }
+    setup.source = request.source.empty() ? setup.session.scene : request.source;
+    if (setup.source.empty())
+        throw Error(request.origin, request.sessionFile.empty()
+                                        ? std::string("no scene given")
+                                        : "no scene given, and " + request.sessionFile.string() + " names none");
+    setup.loadOptions.layerRules = request.layerRules;
+    // The file's rules come last: the first matching rule wins, so the request's win.
+    for (const LayerRule &rule : setup.session.layerRules.rules()) setup.loadOptions.layerRules.add(rule);
+    return setup;
+}
+
+Camera ViewSetup::camera(const Scene &scene, const ViewRequest &request, float aspect) const {
+    const ViewCoordinates coordinates({1, 1}, scene);
+    const std::optional<LensStackCamera> &fileCamera = session.camera;
+    const bool fileNamesCamera = request.sceneCamera.empty() && fileCamera && !fileCamera->sceneCamera.empty();
+    const std::string &cameraName = fileNamesCamera ? fileCamera->sceneCamera : request.sceneCamera;
+    Camera camera;
+    if (!cameraName.empty()) {
+        const CameraDesc *found = findSceneCamera(scene, cameraName);
+        if (!found)
+            throw Error(fileNamesCamera ? request.sessionFile.string() : request.origin,
+                        std::string(fileNamesCamera ? "camera" : "--camera") + " '" + cameraName + "': the scene has " +
+                            std::to_string(scene.cameras.size()) + " cameras and none by that name or index");
+        camera = Camera::fromDesc(*found);
+    } else if (fileCamera) {
+        camera = coordinates.cameraFromWorld(*fileCamera);
+    } else if (scene.name.rfind("builtin:", 0) == 0 && !scene.cameras.empty()) {
+        camera = Camera::fromDesc(scene.cameras.front());
+    } else {
+        camera = Camera::framing(scene.bounds(), request.verticalFovDegrees.value_or(kDefaultVerticalFovDegrees),
+                                 aspect);
+    }
+    // Explicit values override parts of the chosen view; they are in world space.
+    const glm::vec3 eye = request.eye ? coordinates.sceneFromWorld(*request.eye) : camera.eye();
+    const glm::vec3 target = request.target ? coordinates.sceneFromWorld(*request.target) : camera.target();
+    return Camera::lookAt(eye, target, request.up.value_or(camera.up()),
+                          request.verticalFovDegrees.value_or(camera.verticalFov()));
+}
+
+LensStackDescription ViewSetup::describe(const Scene &scene, const Camera &camera, const LensStack &lenses,
+                                         uint32_t visibleLayers) const {
+    LensStackDescription description;
+    description.scene = source;
+    description.camera = ViewCoordinates({1, 1}, scene).worldFromCamera(camera);
+    description.layerRules = loadOptions.layerRules;
+    description.visibleLayers = visibleLayers;
+    description.lenses = lenses; // shares the lenses
+    return description;
+}
+
+LensStackDescription ViewSetup::describe(const Scene &scene, const Camera &camera) const {
+    return describe(scene, camera, session.lenses, session.visibleLayers);
+}
+
+} // namespace mvcl
