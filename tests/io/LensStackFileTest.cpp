@@ -264,6 +264,26 @@ TEST(LensStackFile, MissingKeysTakeDefaults) {
         EXPECT_EQ(lens.committedValues()[i], lens.properties()[i].defaultValue) << lens.properties()[i].name;
 }
 
+// "visibleLayers" is optional and written only when a layer is hidden, so the files of views
+// that hide nothing stay as they were.
+TEST(LensStackFile, VisibleLayersRoundTripAndAreLeftOutWhenAllAreVisible) {
+    EXPECT_EQ(parseLensStackJson("{}", "inline", registry()).visibleLayers, kAllLayers);
+    LensStackDescription d;
+    d.scene = "builtin:onion";
+    EXPECT_EQ(lensStackJson(d).find("visibleLayers"), std::string::npos);
+    d.visibleLayers = layerBit(0) | layersFrom(2);
+    const std::string text = lensStackJson(d);
+    EXPECT_NE(text.find(R"("visibleLayers": "0,2-")"), std::string::npos) << text;
+    EXPECT_EQ(parseLensStackJson(text, "inline", registry()), d);
+    EXPECT_EQ(parseLensStackJson(R"({"visibleLayers": [1, 3]})", "inline", registry()).visibleLayers,
+              layerBit(1) | layerBit(3));
+    EXPECT_EQ(parseLensStackJson(R"({"visibleLayers": "none"})", "inline", registry()).visibleLayers, 0u);
+    const std::string bad = errorOf([] { parseLensStackJson(R"({"visibleLayers": "0-40"})", "s.json", registry()); });
+    EXPECT_EQ(bad.rfind("s.json: visibleLayers: ", 0), 0u) << bad;
+    const std::string wrongType = errorOf([] { parseLensStackJson(R"({"visibleLayers": {}})", "s.json", registry()); });
+    EXPECT_EQ(wrongType.rfind("s.json: visibleLayers: ", 0), 0u) << wrongType;
+}
+
 TEST(LensStackFile, RelativeScenePathsAreRelativeToTheFile) {
     const fs::path dir = scratchDir("relative");
     fs::create_directories(dir / "stacks");

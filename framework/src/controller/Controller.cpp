@@ -201,7 +201,11 @@ void Controller::loadSession(const std::filesystem::path &file) {
     std::unique_ptr<Scene> scene;
     std::unique_ptr<Tracer> tracer;
     if (!sameScene) {
-        scene = std::make_unique<Scene>(loadScene(setup.source, setup.loadOptions));
+        try {
+            scene = std::make_unique<Scene>(loadScene(setup.source, setup.loadOptions));
+        } catch (const Error &e) { // the scene's own error, said to be the session file's scene
+            throw Error(file.string(), "scene: " + std::string(e.what()));
+        }
         tracer = std::make_unique<Tracer>(*scene);
     }
     const Camera camera = setup.camera(sameScene ? *d->scene : *scene, request, coordinates().aspect());

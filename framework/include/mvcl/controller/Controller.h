@@ -52,8 +52,10 @@
 #include <mvcl/io/LensStackFile.h>
 #include <mvcl/io/SceneLoader.h>
 #include <mvcl/lens/LensStack.h>
+#include <mvcl/model/Scene.h>
 #include <mvcl/tracer/RayPolicy.h>
 #include <mvcl/view/Camera.h>
+#include <mvcl/view/RenderSession.h>
 #include <mvcl/view/RenderSettings.h>
 
 #include <glm/vec2.hpp>
@@ -68,9 +70,7 @@
 namespace mvcl {
 
 class LensRegistry;
-class RenderSession;
 class Tracer;
-struct Scene;
 
 enum class LayerVisibility : uint8_t { Visible, Hidden };
 

@@ -1,0 +1,170 @@
+// Controller session files: save → load round trip, broken files leave the state untouched
+// with an error naming the file, the recovery copy after every step, dropped files.
+
+#include "ErrorOf.h"
+#include "controller/ControllerFixture.h"
+
+#include <mvcl/io/LensStackFile.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace mvcl::test {
+namespace {
+
+class ControllerSessionFileTest : public ControllerFixture {
+protected:
+    /// A controller with a few edits of every kind.
+    static std::unique_ptr<Controller> editedController() {
+        auto controller = makeController();
+        controller->addLens("layer", {0.4f, 0.45f});
+        controller->setLensProperty(0, "layers", "1-");
+        controller->setLensLabel(0, "reveal");
+        controller->addLens("shadow", {0.6f, 0.5f});
+        controller->setLensRegion(1, LensRegion::polygon({{0.5f, 0.4f}, {0.8f, 0.45f}, {0.7f, 0.8f}}));
+        controller->setLensProperty(1, "mode", "tinted");
+        controller->setLensEnabled(1, false);
+        controller->setLayerVisibility(2, LayerVisibility::Hidden);
+        controller->orbit(0.4f, 0.1f);
+        return controller;
+    }
+
+    static std::string readText(const fs::path &file) {
+        std::ifstream in(file);
+        std::stringstream text;
+        text << in.rdbuf();
+        return text.str();
+    }
+};
+
+TEST_F(ControllerSessionFileTest, SaveThenLoadGivesTheSameState) {
+    const fs::path file = scratchFolder() / "session.json";
+    auto edited = editedController();
+    edited->saveSession(file);
+    EXPECT_EQ(edited->sessionPath(), file);
+    EXPECT_NE(readText(file).find("\"visibleLayers\": \"0-1,3-\""), std::string::npos) << readText(file);
+
+    auto fresh = makeController();
+    fresh->addLens("magnifier", {0.5f, 0.5f});
+    fresh->loadSession(file);
+    EXPECT_EQ(fresh->state(), edited->state());
+    EXPECT_EQ(fresh->sceneSource(), "builtin:cube-in-cube");
+    EXPECT_EQ(fresh->sessionPath(), file);
+    EXPECT_FALSE(fresh->canUndo()) << "a loaded session starts a new history";
+    EXPECT_EQ(fresh->renderSession().camera(), fresh->camera());
+
+    // The same file read by the framework's reader (as mvcl-render does) is the description.
+    EXPECT_EQ(readLensStackFile(file, *registry), fresh->description());
+}
+
+TEST_F(ControllerSessionFileTest, ABrokenSessionThrowsNamingTheFileAndChangesNothing) {
+    const fs::path folder = scratchFolder();
+    auto controller = editedController();
+    const SessionState before = controller->state();
+    const int steps = controller->undoCount();
+    const struct {
+        const char *json;
+        const char *problem;
+    } cases[] = {
+        {R"({"scene": "builtin:cube-in-cube", "zoom": 2})", "unknown key 'zoom'"},
+        {R"({"lenses": [{"type": "shadow", "properties": {"strenght": 1}}]})", "strenght"},
+        {R"({"lenses": [)", "invalid JSON"},
+        {R"({"scene": "builtin:teapot"})", "teapot"},
+        {R"({"scene": "builtin:cube-in-cube", "visibleLayers": "0-40"})", "visibleLayers"},
+        {R"({"lenses": []})", "no scene"},
+    };
+    for (const auto &c : cases) {
+        const fs::path file = folder / "broken.json";
+        std::ofstream(file) << c.json;
+        const std::string message = errorOf([&] { controller->loadSession(file); });
+        EXPECT_NE(message.find("broken.json"), std::string::npos) << c.json << "\n" << message;
+        EXPECT_NE(message.find(c.problem), std::string::npos) << c.json << "\n" << message;
+        EXPECT_EQ(controller->state(), before) << c.json;
+        EXPECT_EQ(controller->undoCount(), steps) << c.json;
+        EXPECT_TRUE(controller->sessionPath().empty()) << c.json;
+    }
+    const std::string missing = errorOf([&] { controller->loadSession(folder / "missing.json"); });
+    EXPECT_NE(missing.find("missing.json"), std::string::npos) << missing;
+    EXPECT_EQ(controller->state(), before);
+}
+
+TEST_F(ControllerSessionFileTest, TheRecoveryCopyIsRewrittenAfterEveryEditStep) {
+    const fs::path folder = scratchFolder();
+    auto controller = makeController();
+    EXPECT_TRUE(controller->recoveryPath().empty()) << "no session, no recovery path given";
+    controller->saveSession(folder / "work.json");
+    EXPECT_EQ(controller->recoveryPath(), folder / "work.recovery.json");
+    EXPECT_FALSE(fs::exists(controller->recoveryPath())) << "saving leaves nothing to recover";
+
+    controller->addLens("achromatic", {0.3f, 0.3f});
+    ASSERT_TRUE(fs::exists(folder / "work.recovery.json"));
+    EXPECT_EQ(readLensStackFile(folder / "work.recovery.json", *registry), controller->description());
+
+    drag(*controller, pixelOf({0.3f, 0.3f}), pixelOf({0.3f, 0.3f}) + glm::vec2(20.f, 20.f));
+    EXPECT_EQ(readLensStackFile(folder / "work.recovery.json", *registry), controller->description());
+    controller->undo();
+    EXPECT_EQ(readLensStackFile(folder / "work.recovery.json", *registry), controller->description());
+
+    // A recovery copy loads as a session: a crash loses nothing.
+    auto restored = makeController();
+    restored->loadSession(folder / "work.recovery.json");
+    EXPECT_EQ(restored->state(), controller->state());
+
+    const fs::path chosen = folder / "elsewhere" / "copy.json";
+    controller->setRecoveryPath(chosen);
+    controller->setLayerVisibility(0, LayerVisibility::Hidden);
+    EXPECT_EQ(readLensStackFile(chosen, *registry), controller->description());
+}
+
+TEST_F(ControllerSessionFileTest, AFailedRecoveryWriteGoesToTheErrorCallback) {
+    auto controller = makeController();
+    controller->setRecoveryPath("/proc/forbidden/recovery.json");
+    std::vector<std::string> errors;
+    controller->setErrorCallback([&](const Error &e) { errors.emplace_back(e.what()); });
+    controller->addLens("layer", {0.5f, 0.5f});
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors[0].find("/proc/forbidden/recovery.json"), std::string::npos) << errors[0];
+    EXPECT_NE(errors[0].find("recovery copy not written"), std::string::npos) << errors[0];
+    EXPECT_EQ(controller->lensCount(), 1) << "the edit stands";
+}
+
+TEST_F(ControllerSessionFileTest, DroppedFilesOpenSessionsAndModelsAndReportBrokenOnes) {
+    const fs::path folder = scratchFolder();
+    auto edited = editedController();
+    edited->saveSession(folder / "dropped.json");
+
+    auto controller = makeController();
+    std::vector<std::string> errors;
+    controller->setErrorCallback([&](const Error &e) { errors.emplace_back(e.what()); });
+    int sceneChanges = 0;
+    controller->setSceneChangedCallback([&] { ++sceneChanges; });
+    EXPECT_TRUE(controller->handle(InputEvent::fileDrop({10.f, 10.f}, {(folder / "dropped.json").string()})));
+    EXPECT_EQ(controller->state(), edited->state());
+    EXPECT_EQ(sceneChanges, 0) << "the same scene is kept";
+
+    std::ofstream(folder / "bad.json") << R"({"lenses": [{"type": "nosuchlens"}]})";
+    const SessionState before = controller->state();
+    EXPECT_FALSE(controller->handle(InputEvent::fileDrop({10.f, 10.f}, {(folder / "bad.json").string()})));
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors[0].find("bad.json"), std::string::npos) << errors[0];
+    EXPECT_EQ(controller->state(), before);
+
+    const fs::path box = fs::path(MVCL_TEST_DATA_DIR) / "models" / "Box" / "Box.glb";
+    EXPECT_TRUE(controller->handle(InputEvent::fileDrop({10.f, 10.f}, {box.string()})));
+    EXPECT_EQ(sceneChanges, 1);
+    EXPECT_EQ(controller->sceneSource(), box.string());
+    EXPECT_EQ(controller->lensCount(), 2) << "the lenses stay with a new model";
+    EXPECT_EQ(controller->visibleLayers(), kAllLayers);
+    EXPECT_EQ(controller->renderSession().camera(), controller->camera());
+    EXPECT_FALSE(controller->canUndo());
+}
+
+TEST_F(ControllerSessionFileTest, WithoutAnErrorCallbackHandleThrows) {
+    auto controller = makeController();
+    EXPECT_THROW(controller->handle(InputEvent::fileDrop({0.f, 0.f}, {"/nonexistent/model.glb"})), Error);
+}
+
+} // namespace
+} // namespace mvcl::test
