@@ -4,6 +4,7 @@
 #include "ProgressBar.h"
 #include "RenderCommandLine.h"
 
+#include <mvcl/controller/ViewSetup.h>
 #include <mvcl/core/Error.h>
 #include <mvcl/core/WorkerPool.h>
 #include <mvcl/io/LensStackFile.h>
@@ -111,49 +112,32 @@ void printLensTypes(const LensRegistry &registry) {
     }
 }
 
-/// The view: the command line's --camera, else the lens file's camera, else the scene's default;
-/// then --eye/--target/--up/--fov override parts of it.
-Camera chooseCamera(const Scene &scene, const RenderCommandLine &cl, const std::optional<LensStackCamera> &fileCamera) {
-    const float aspect = float(cl.width) / float(cl.height);
-    const glm::vec3 origin(scene.worldOrigin);
-    const bool fileNamesCamera = cl.camera.empty() && fileCamera && !fileCamera->sceneCamera.empty();
-    const std::string &cameraName = fileNamesCamera ? fileCamera->sceneCamera : cl.camera;
-    Camera camera;
-    if (!cameraName.empty()) {
-        const CameraDesc *found = nullptr;
-        for (std::size_t i = 0; i < scene.cameras.size(); ++i)
-            if (scene.cameras[i].name == cameraName || std::to_string(i) == cameraName) found = &scene.cameras[i];
-        if (!found)
-            throw Error(fileNamesCamera ? cl.lensFile : "command line",
-                        std::string(fileNamesCamera ? "camera" : "--camera") + " '" + cameraName + "': the scene has " +
-                            std::to_string(scene.cameras.size()) + " cameras and none by that name or index");
-        camera = Camera::fromDesc(*found);
-    } else if (fileCamera) {
-        camera = Camera::lookAt(fileCamera->eye - origin, fileCamera->target - origin, fileCamera->up,
-                                fileCamera->verticalFovDegrees);
-    } else if (scene.name.rfind("builtin:", 0) == 0 && !scene.cameras.empty()) {
-        camera = Camera::fromDesc(scene.cameras.front());
-    } else {
-        camera = Camera::framing(scene.bounds(), cl.fov.value_or(40.f), aspect);
-    }
-    // Explicit options override parts of the chosen view; they are in world space.
-    const glm::vec3 eye = cl.eye ? *cl.eye - origin : camera.eye();
-    const glm::vec3 target = cl.target ? *cl.target - origin : camera.target();
-    return Camera::lookAt(eye, target, cl.up.value_or(camera.up()), cl.fov.value_or(camera.verticalFov()));
-}
-
-/// The lens file's description (or an empty one) with the command line's lenses on top.
-LensStackDescription loadLenses(const RenderCommandLine &cl, const LensRegistry &registry) {
-    LensStackDescription description;
-    if (!cl.lensFile.empty()) description = readLensStackFile(cl.lensFile, registry);
-    for (const std::string &spec : cl.lensSpecs) {
-        try { // a malformed option value is a usage error, not a bad file
-            description.lenses.add(parseLensSpec(spec, registry));
-        } catch (const Error &e) {
-            throw Error("command line", e.what());
+/// The command line as a view request: what ViewSetup chooses the scene, camera, lenses and
+/// layer rules from, as the viewer does.
+ViewRequest viewRequest(const RenderCommandLine &cl) {
+    ViewRequest request;
+    request.source = cl.source;
+    request.sessionFile = cl.lensFile;
+    request.lensSpecs = cl.lensSpecs;
+    request.sceneCamera = cl.camera;
+    request.eye = cl.eye;
+    request.target = cl.target;
+    request.up = cl.up;
+    request.verticalFovDegrees = cl.fov;
+    // Inline rules first, then the rules file: the first matching rule wins.
+    if (!cl.layerRules.empty()) {
+        try {
+            request.loadOptions.layerRules = LayerRules::fromString(cl.layerRules);
+        } catch (const Error &e) { // a malformed option value is a usage error, not a bad file
+            throw Error("command line", "--layer-rule: " + e.problem());
         }
     }
-    return description;
+    if (!cl.layerRulesFile.empty()) {
+        const LayerRules fileRules = LayerRules::fromJsonFile(cl.layerRulesFile);
+        for (const LayerRule &rule : fileRules.rules()) request.loadOptions.layerRules.add(rule);
+    }
+    request.loadOptions.defaultLights = cl.defaultLights ? DefaultLights::WhenTheFileHasNone : DefaultLights::Never;
+    return request;
 }
 
 void printLensCosts(const LensStack &stack, const PolicyMap &policies, const RenderPassStats &stats) {
@@ -227,27 +211,11 @@ int run(const RenderCommandLine &cl) {
         printLensTypes(registry);
         return kExitOk;
     }
-    const LensStackDescription lenses = loadLenses(cl, registry);
-    const std::string source = cl.source.empty() ? lenses.scene : cl.source;
-    if (source.empty()) throw Error("command line", "no scene given, and " + cl.lensFile + " names none");
+    const ViewRequest request = viewRequest(cl);
+    const ViewSetup setup = ViewSetup::prepare(request, registry);
+    const LensStack &lenses = setup.session.lenses;
 
-    SceneLoadOptions loadOptions;
-    if (!cl.layerRules.empty()) {
-        try {
-            loadOptions.layerRules = LayerRules::fromString(cl.layerRules);
-        } catch (const Error &e) { // a malformed option value is a usage error, not a bad file
-            throw Error("command line", "--layer-rule: " + e.problem());
-        }
-    }
-    if (!cl.layerRulesFile.empty()) {
-        const LayerRules fileRules = LayerRules::fromJsonFile(cl.layerRulesFile);
-        for (const LayerRule &rule : fileRules.rules()) loadOptions.layerRules.add(rule);
-    }
-    loadOptions.defaultLights = cl.defaultLights ? DefaultLights::WhenTheFileHasNone : DefaultLights::Never;
-    // The lens file's rules come last: the first matching rule wins, so the command line's win.
-    for (const LayerRule &rule : lenses.layerRules.rules()) loadOptions.layerRules.add(rule);
-
-    const Scene scene = loadScene(source, loadOptions);
+    const Scene scene = loadScene(setup.source, setup.loadOptions);
     if (cl.info) {
         printInfo(scene);
         return kExitOk;
@@ -255,16 +223,10 @@ int run(const RenderCommandLine &cl) {
 
     const Tracer tracer(scene);
     const TracerBuildStats &build = tracer.buildStats();
-    const Camera camera = chooseCamera(scene, cl, lenses.camera);
+    const Camera camera = setup.camera(scene, request, float(cl.width) / float(cl.height));
     if (!cl.saveLensesFile.empty()) {
-        LensStackDescription effective = lenses; // shares the lenses
-        effective.scene = source;
-        const glm::vec3 origin(scene.worldOrigin);
-        effective.camera = LensStackCamera{"", camera.eye() + origin, camera.target() + origin, camera.up(),
-                                           camera.verticalFov()};
-        effective.layerRules = loadOptions.layerRules;
         try {
-            writeLensStackFile(cl.saveLensesFile, effective);
+            writeLensStackFile(cl.saveLensesFile, setup.describe(scene, camera));
         } catch (const Error &e) {
             std::fprintf(stderr, "mvcl-render: %s\n", e.what());
             return kExitOutput;
@@ -274,15 +236,18 @@ int run(const RenderCommandLine &cl) {
     RenderSession session(tracer);
     session.setSettings(renderSettings(cl));
     session.setCamera(camera);
-    session.setLensStack(lenses.lenses);
+    RayPolicy base;
+    base.query(RayType::Primary).layerMask = setup.session.visibleLayers;
+    session.setBasePolicy(base);
+    session.setLensStack(lenses);
     ProgressBar bar(cl.progress && isatty(STDERR_FILENO));
     session.setProgressCallback([&](float f) { bar.update(f); });
     const RenderPassStats stats = session.renderUntilIdle();
     bar.finish();
     Framebuffer image = session.image();
-    drawLensOutlines(lenses.lenses, image);
+    drawLensOutlines(lenses, image);
 
-    const std::string output = cl.output.empty() ? "out/" + sceneStem(source) + ".png" : cl.output;
+    const std::string output = cl.output.empty() ? "out/" + sceneStem(setup.source) + ".png" : cl.output;
     try {
         writeImage(output, image);
     } catch (const Error &e) {
@@ -308,7 +273,7 @@ int run(const RenderCommandLine &cl) {
                 double(stats.rays.reflection) * 1e-6, double(stats.rays.refraction) * 1e-6,
                 stats.milliseconds > 0 ? double(stats.rays.total()) / (stats.milliseconds * 1e3) : 0.0);
     printSkippedStages(stats.rays, settings);
-    if (!lenses.lenses.isEmpty()) printLensCosts(lenses.lenses, session.policyMap(), stats);
+    if (!lenses.isEmpty()) printLensCosts(lenses, session.policyMap(), stats);
     if (!cl.saveLensesFile.empty()) std::printf("saved      %s\n", cl.saveLensesFile.c_str());
     std::printf("wrote      %s\n", output.c_str());
     return kExitOk;

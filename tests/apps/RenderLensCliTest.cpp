@@ -166,3 +166,23 @@ TEST(RenderLensCli, LensFileCameraNamesASceneCamera) {
     std::ofstream(file) << R"({"scene": ")" << duck << R"(", "camera": {"name": 0}})";
     EXPECT_EQ(runRender("--lenses " + file.string() + kSmall + " -o " + out.string()).exitCode, 0);
 }
+
+// A session's visibleLayers hide layers outside every lens, as the viewer's layer switches do,
+// and --save-lenses keeps them.
+TEST(RenderLensCli, VisibleLayersOfASessionHideLayersOutsideTheLenses) {
+    const fs::path file = outDir() / "visible-layers.json";
+    const fs::path saved = outDir() / "visible-layers-saved.json";
+    const fs::path plain = outDir() / "visible-plain.png";
+    const fs::path hidden = outDir() / "visible-hidden.png";
+    std::ofstream(file) << R"({"scene": "builtin:cube-in-cube", "visibleLayers": "1-"})";
+    ASSERT_EQ(runRender(std::string("builtin:cube-in-cube") + kSmall + " -o " + plain.string()).exitCode, 0);
+    const CommandResult r = runRender("--lenses " + file.string() + kSmall + " -o " + hidden.string() +
+                                      " --save-lenses " + saved.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(readText(saved).find("\"visibleLayers\": \"1-\""), std::string::npos) << readText(saved);
+    const mvcl::Framebuffer a = mvcl::readImage(plain), b = mvcl::readImage(hidden);
+    int changed = 0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) changed += a.at(x, y) != b.at(x, y);
+    EXPECT_GT(changed, a.width() * a.height() / 4) << "the outer cube, floor and spheres (layer 0) are gone";
+}

@@ -41,7 +41,7 @@ TEST_F(ViewSetupTest, TheRequestsSceneWinsOverTheFilesAndItsLensesGoOnTop) {
 TEST_F(ViewSetupTest, RequestRulesComeBeforeTheFilesSoTheyWin) {
     ViewRequest request;
     request.sessionFile = writeSession(R"({"scene": "builtin:onion", "layerRules": [{"match": "*", "layer": 3}]})");
-    request.layerRules.add({"*skin*", 0});
+    request.loadOptions.layerRules.add({"*skin*", 0});
     const ViewSetup setup = ViewSetup::prepare(request, *registry);
     ASSERT_EQ(setup.loadOptions.layerRules.rules().size(), 2u);
     EXPECT_EQ(setup.loadOptions.layerRules.rules()[0].pattern, "*skin*");
@@ -104,7 +104,7 @@ TEST_F(ViewSetupTest, DescribeGivesTheEffectiveSessionInWorldUnits) {
     ViewRequest request;
     request.sessionFile = writeSession(R"({"scene": "builtin:onion", "visibleLayers": "1-",
                                            "lenses": [{"type": "achromatic"}]})");
-    request.layerRules.add({"*", 2});
+    request.loadOptions.layerRules.add({"*", 2});
     const ViewSetup setup = ViewSetup::prepare(request, *registry);
     const Scene scene = loadScene(setup.source, setup.loadOptions);
     const Camera camera = setup.camera(scene, request, 1.f);

@@ -195,6 +195,9 @@ void Controller::loadSession(const std::filesystem::path &file) {
     ViewRequest request;
     request.sessionFile = file;
     request.origin = file.string(); // "no scene given" is the file's problem here
+    // The app's way of loading (default lights, inference) stays; the rules are the file's.
+    request.loadOptions = d->setup.loadOptions;
+    request.loadOptions.layerRules = {};
     ViewSetup setup = ViewSetup::prepare(request, d->registry);
     const bool sameScene = sameSource(setup.source, d->setup.source) &&
                            sameRules(setup.loadOptions.layerRules, d->setup.loadOptions.layerRules);

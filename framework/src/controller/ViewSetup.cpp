@@ -33,7 +33,7 @@ ViewSetup ViewSetup::prepare(const ViewRequest &request, const LensRegistry &reg
         throw Error(request.origin, request.sessionFile.empty()
                                         ? std::string("no scene given")
                                         : "no scene given, and " + request.sessionFile.string() + " names none");
-    setup.loadOptions.layerRules = request.layerRules;
+    setup.loadOptions = request.loadOptions;
     // The file's rules come last: the first matching rule wins, so the request's win.
     for (const LayerRule &rule : setup.session.layerRules.rules()) setup.loadOptions.layerRules.add(rule);
     return setup;

@@ -5,7 +5,7 @@
 /// line; an interactive viewer from its command line or an open dialog. ViewSetup turns it
 /// into a scene to load and a camera, by the same rules for every app.
 
-#include <mvcl/model/LayerRules.h>
+#include <mvcl/io/SceneLoader.h>
 
 #include <glm/vec3.hpp>
 
@@ -24,9 +24,9 @@ struct ViewRequest {
     std::filesystem::path sessionFile;
     /// One lens each, "type:key=value,..." (parseLensSpec), stacked above the file's lenses.
     std::vector<std::string> lensSpecs;
-    /// The user's layer rules. They come before the session file's, and the first matching
-    /// rule wins, so these win.
-    LayerRules layerRules;
+    /// How to load the scene. Its layer rules are the user's: they come before the session
+    /// file's, and the first matching rule wins, so these win.
+    SceneLoadOptions loadOptions;
     /// A camera of the scene by name or index; wins over the session file's camera.
     std::string sceneCamera;
     /// Parts of the chosen view to override, in world space (the file's units).

@@ -27,7 +27,8 @@ struct ViewSetup {
     /// The scene to load: model path or builtin:NAME (a relative path in a session file comes
     /// resolved against the file's folder).
     std::string source;
-    /// The merged layer rules (request first, then the session file's).
+    /// The request's load options with the merged layer rules (the request's first, then the
+    /// session file's).
     SceneLoadOptions loadOptions;
     /// The session file as read (or empty), with the request's lenses on top; its camera is
     /// still in world units or names a scene camera.
