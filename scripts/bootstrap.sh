@@ -11,7 +11,7 @@ build_type="${MVCL_BUILD_TYPE:-Release}"
 packages=(
   g++ cmake ninja-build pkg-config
   libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenimageio-dev libtbb-dev
-  libgtest-dev
+  libcli11-dev libgtest-dev
   libembree-dev libbenchmark-dev   # optional peers for mvcl-bench
 )
 

@@ -8,6 +8,9 @@
 // re-traces only what changed) and a camera orbit (previews sized to the frame budget).
 //
 //   mvcl-lens-bench [model | builtin:<name>] [--size WxH] [--spp N] [--threads N] [--repeat R]
+//   (exit 2 for bad arguments, 1 when the model does not load)
+
+#include "CommandLineValues.h"
 
 #include <mvcl/core/Error.h>
 #include <mvcl/io/SceneLoader.h>
@@ -22,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -44,29 +48,34 @@ struct Options {
     int repeat = 5;
 };
 
-Options parseOptions(int argc, char **argv) {
+/// Parses the command line; nullopt when help was asked for (and printed). Throws
+/// mvcl::Error("command line", ...) for bad arguments.
+std::optional<Options> parseOptions(int argc, char **argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw Error("command line", a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "--size") {
-            const std::string v = value();
-            if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 1 || o.height < 1)
-                throw Error("command line", "--size expects WxH, got '" + v + "'");
-        } else if (a == "--spp") {
-            o.spp = std::max(1, std::stoi(value()));
-        } else if (a == "--threads") {
-            o.threads = std::stoi(value());
-        } else if (a == "--repeat") {
-            o.repeat = std::max(1, std::stoi(value()));
-        } else if (!a.empty() && a[0] == '-') {
-            throw Error("command line", "unknown option '" + a + "'");
-        } else {
-            o.model = a;
-        }
+    CLI::App app("mvcl-lens-bench: the cost of 0, 1, 3 and 8 overlapping lenses, a lens drag and an orbit.",
+                 "mvcl-lens-bench");
+    app.formatter(std::make_shared<cli::UsageFormatter>(
+        "usage: mvcl-lens-bench [model | builtin:<name>] [--size WxH] [--spp N] [--threads N] [--repeat R]"));
+    app.set_help_flag("-h,--help", "this text");
+    app.add_option("model", o.model, "model file or builtin:NAME (default the HRA female body)")->option_text(" ");
+    app.add_option_function<std::string>(
+           "--size",
+           [&](const std::string &text) {
+               const glm::ivec2 size = cli::parseImageSize(text);
+               o.width = size.x;
+               o.height = size.y;
+           },
+           "image size in pixels (default 1280x720)")
+        ->type_name("WxH")
+        ->check(cli::imageSize());
+    app.add_option("--spp", o.spp, "samples per pixel (default 1)")->type_name("N")->check(cli::wholeNumberIn(1, 65536));
+    app.add_option("--threads", o.threads, "render threads, 0 = all cores (default 0)")
+        ->type_name("N")
+        ->check(cli::wholeNumberIn(0, 1024));
+    app.add_option("--repeat", o.repeat, "best of R runs (default 5)")->type_name("R")->check(cli::wholeNumberIn(1, 1000));
+    if (cli::parseCommandLine(app, std::vector<std::string>(argv + 1, argv + argc))) {
+        std::fputs(app.help().c_str(), stdout);
+        return std::nullopt;
     }
     return o;
 }
@@ -121,7 +130,15 @@ Measurement measure(const LensStack &stack, const Tracer &tracer, const Camera &
 
 int main(int argc, char **argv) {
     try {
-        const Options o = parseOptions(argc, argv);
+        std::optional<Options> options;
+        try {
+            options = parseOptions(argc, argv);
+        } catch (const Error &e) {
+            std::fprintf(stderr, "mvcl-lens-bench: %s\n", e.what());
+            return 2;
+        }
+        if (!options) return 0;
+        const Options &o = *options;
         LensRegistry registry;
         for (const Error &e : registry.loadModules(LensRegistry::defaultSearchPath()))
             std::fprintf(stderr, "warning: %s\n", e.what());
