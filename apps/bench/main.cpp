@@ -6,6 +6,9 @@
 //
 //   mvcl-bench [model.glb | builtin:<name>] [--size WxH] [--threads N] [--repeat R]
 //              [--embree-config OPTIONS]   (extra rtcNewDevice options, e.g. tri_accel=bvh4.triangle4)
+//   (exit 2 for bad arguments, 1 when the model does not load)
+
+#include "CommandLineValues.h"
 
 #include <mvcl/model/BuiltinScenes.h>
 #include <mvcl/model/GltfLoader.h>
@@ -28,6 +31,7 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <exception>
@@ -83,34 +87,35 @@ struct Options {
     std::string embreeConfig; ///< extra rtcNewDevice options, e.g. "tri_accel=bvh4.triangle4"
 };
 
-Options parseOptions(int argc, char **argv) {
+/// Parses the command line; nullopt when help was asked for (and printed). Throws
+/// mvcl::Error("command line", ...) for bad arguments.
+std::optional<Options> parseOptions(int argc, char **argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "--size") {
-            const std::string v = value();
-            if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width <= 0 ||
-                o.height <= 0)
-                throw std::runtime_error("--size expects WxH, got '" + v + "'");
-        } else if (a == "--threads") {
-            o.threads = std::stoi(value());
-        } else if (a == "--repeat") {
-            o.repeat = std::max(1, std::stoi(value()));
-        } else if (a == "--embree-config") {
-            o.embreeConfig = value();
-        } else if (a == "--help" || a == "-h") {
-            std::puts("usage: mvcl-bench [model.glb | builtin:<name>] [--size WxH] [--threads N] "
-                      "[--repeat R] [--embree-config OPTIONS]");
-            std::exit(0);
-        } else if (!a.empty() && a[0] == '-') {
-            throw std::runtime_error("unknown option " + a);
-        } else {
-            o.model = a;
-        }
+    CLI::App app("mvcl-bench: our tracer and Embree on the same mesh, rays and threads.", "mvcl-bench");
+    app.formatter(std::make_shared<mvcl::cli::UsageFormatter>(
+        "usage: mvcl-bench [model.glb | builtin:<name>] [--size WxH] [--threads N] [--repeat R]\n"
+        "                  [--embree-config OPTIONS]"));
+    app.set_help_flag("-h,--help", "this text");
+    app.add_option("model", o.model, "model file or builtin:NAME (default the 2CylinderEngine)")->option_text(" ");
+    app.add_option_function<std::string>(
+           "--size",
+           [&](const std::string &text) {
+               const glm::ivec2 size = mvcl::cli::parseImageSize(text);
+               o.width = size.x;
+               o.height = size.y;
+           },
+           "primary rays, one per pixel of a WxH image (default 1024x1024)")
+        ->type_name("WxH")
+        ->check(mvcl::cli::imageSize());
+    app.add_option("--threads", o.threads, "threads for both tracers, 0 = all cores (default 0)")
+        ->type_name("N")
+        ->check(mvcl::cli::wholeNumberIn(0, 1024));
+    app.add_option("--repeat", o.repeat, "best of R runs (default 3)")->type_name("R")->check(mvcl::cli::wholeNumberIn(1, 1000));
+    app.add_option("--embree-config", o.embreeConfig, "extra rtcNewDevice options, e.g. tri_accel=bvh4.triangle4")
+        ->type_name("OPTIONS");
+    if (mvcl::cli::parseCommandLine(app, std::vector<std::string>(argv + 1, argv + argc))) {
+        std::fputs(app.help().c_str(), stdout);
+        return std::nullopt;
     }
     if (o.threads <= 0) o.threads = int(std::max(1u, std::thread::hardware_concurrency()));
     return o;
@@ -228,8 +233,16 @@ void printRow(const char *what, double ours, double embree, const char *unit, bo
 } // namespace
 
 int main(int argc, char **argv) {
+    std::optional<Options> options;
     try {
-        const Options opt = parseOptions(argc, argv);
+        options = parseOptions(argc, argv);
+    } catch (const mvcl::Error &e) {
+        std::fprintf(stderr, "mvcl-bench: %s\n", e.what());
+        return 2;
+    }
+    if (!options) return 0;
+    try {
+        const Options &opt = *options;
         const auto loadStart = Clock::now();
         const mvcl::Scene scene = meshesOnly(opt.model.rfind("builtin:", 0) == 0
                                                  ? mvcl::makeBuiltinScene(opt.model.substr(8))
