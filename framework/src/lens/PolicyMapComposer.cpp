@@ -1,0 +1,304 @@
+#include "PolicyMapComposer_p.h"
+
+#include "LensSetIndex_p.h"
+#include "PolicyMapBuilder_p.h"
+
+#include <mvcl/core/WorkerPool.h>
+#include <mvcl/lens/LensStack.h>
+#include <mvcl/lens/PolicyComposition.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <unordered_map>
+
+namespace mvcl {
+
+namespace {
+
+constexpr int kMaxBlended = LensStack::kMaxBlendedLenses;
+constexpr int kMaxSubsets = 1 << kMaxBlended;
+// Rows per parallel chunk: enough bands for every thread to take a few, few enough that
+// the per-band bookkeeping (set tables, record vectors) stays negligible.
+constexpr int kRowsPerBand = 16;
+
+uint64_t lensBit(int lens) { return uint64_t(1) << lens; }
+
+/// A boundary of a lens's row span. At equal x, events apply in this order, so that a lens
+/// whose edge part is empty goes straight from out to in (and back) without a stale state.
+enum class SpanEvent : uint8_t { Enter = 0, EnterInner = 1, LeaveInner = 2, Leave = 3 };
+
+/// x, then event kind, then lens: sorting the packed keys sorts the events.
+uint64_t eventKey(int x, SpanEvent event, int lens) {
+    return (uint64_t(uint32_t(x)) << 8) | (uint64_t(event) << 6) | uint64_t(lens);
+}
+int eventX(uint64_t key) { return int(key >> 8); }
+SpanEvent eventKind(uint64_t key) { return SpanEvent((key >> 6) & 3u); }
+int eventLens(uint64_t key) { return int(key & 63u); }
+
+} // namespace
+
+/// What one band of rows found, in scan order; lens sets are band-local numbers until the
+/// merge gives them policies.
+class PolicyMapComposer::Band {
+public:
+    struct Run {
+        int y, x0, x1;
+        uint32_t set;
+    };
+    struct Blend {
+        int y, x;
+        uint32_t firstTerm; // into terms
+        uint32_t termCount; // ≥ 2
+    };
+    struct Term {
+        uint32_t set;
+        float weight; // normalised
+    };
+
+    /// The set's band-local number; the first time, notes how many blends came before it,
+    /// which is where its policy's own mix goes between the blends' mixes.
+    uint32_t see(uint64_t set) {
+        const auto [index, added] = m_sets.insert(set);
+        if (added) blendsBeforeSet.push_back(uint32_t(blends.size()));
+        return index;
+    }
+    /// Pixels [x0, x1) of row y are on `set`; extends the previous run where it can.
+    void addRun(int y, int x0, int x1, uint64_t set) {
+        const uint32_t index = see(set);
+        if (!runs.empty()) {
+            Run &last = runs.back();
+            if (last.y == y && last.x1 == x0 && last.set == index) {
+                last.x1 = x1;
+                return;
+            }
+        }
+        runs.push_back({y, x0, x1, index});
+    }
+    const std::vector<uint64_t> &sets() const { return m_sets.sets(); }
+    /// Terms of blends [first, end).
+    uint32_t termsOfBlends(std::size_t first, std::size_t end) const {
+        const auto termAt = [this](std::size_t blend) {
+            return blend < blends.size() ? blends[blend].firstTerm : uint32_t(terms.size());
+        };
+        return termAt(end) - termAt(first);
+    }
+
+    std::vector<uint32_t> blendsBeforeSet; // per band-local set
+    std::vector<Run> runs;
+    std::vector<Blend> blends;
+    std::vector<Term> terms;
+    std::vector<uint64_t> events; // scratch of scanRow
+
+    // Set by the merge.
+    std::vector<uint16_t> policyOfSet;           // band-local set → map policy
+    std::vector<uint32_t> blendsBeforeNewPolicy; // for each policy this band added, in order
+    uint32_t firstMix = 0;
+    uint32_t firstTerm = 0;
+
+private:
+    LensSetIndex m_sets;
+};
+
+PolicyMapComposer::PolicyMapComposer(const LensSnapshots &snapshots, const RayPolicy &base, int width, int height)
+    : m_snapshots(snapshots), m_base(base), m_width(width), m_height(height) {
+    m_firstRow = height;
+    for (int i = 0; i < int(snapshots.size()); ++i) {
+        const LensSnapshot &s = *snapshots[size_t(i)];
+        if (!s.enabled || s.contribution.isIdentity()) continue;
+        const PixelRect r = s.region.pixelBounds(width, height);
+        if (r.isEmpty()) continue;
+        m_active.push_back({i, r, &s.region});
+        m_firstRow = std::min(m_firstRow, r.y0);
+        m_endRow = std::max(m_endRow, r.y1);
+    }
+}
+
+PixelPolicy PolicyMapComposer::policyOfSet(const LensSnapshots &snapshots, const RayPolicy &base, uint64_t lensSet) {
+    PixelPolicy policy{base, glm::mat3(1.f), 0};
+    for (uint64_t bits = lensSet; bits != 0; bits &= bits - 1)
+        policy = applyContribution(policy, snapshots[size_t(std::countr_zero(bits))]->contribution);
+    policy.lensSet = lensSet;
+    return policy;
+}
+
+PolicyMap PolicyMapComposer::compose(int threads) const {
+    PolicyMap map(m_width, m_height, m_base);
+    if (m_active.empty()) return map;
+
+    const int rows = m_endRow - m_firstRow;
+    std::vector<Band> bands(size_t((rows + kRowsPerBand - 1) / kRowsPerBand));
+    parallelForChunks(bands.size(), threads, 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t b = begin; b < end; ++b) {
+            const int y0 = m_firstRow + int(b) * kRowsPerBand;
+            const int y1 = std::min(m_endRow, y0 + kRowsPerBand);
+            for (int y = y0; y < y1; ++y) scanRow(y, bands[b]);
+        }
+    });
+    mergeBands(bands, map);
+    parallelForChunks(bands.size(), threads, 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t b = begin; b < end; ++b) fillBand(bands[b], map);
+    });
+    return map;
+}
+
+void PolicyMapComposer::scanRow(int y, Band &band) const {
+    std::vector<uint64_t> &events = band.events;
+    events.clear();
+    for (const ActiveLens &lens : m_active) {
+        if (y < lens.bounds.y0 || y >= lens.bounds.y1) continue;
+        const LensRegion::RowSpan span = lens.region->rowSpan(y, m_width, m_height);
+        if (span.x0 >= span.x1) continue;
+        events.push_back(eventKey(span.x0, SpanEvent::Enter, lens.index));
+        if (span.innerX0 < span.innerX1) {
+            events.push_back(eventKey(span.innerX0, SpanEvent::EnterInner, lens.index));
+            events.push_back(eventKey(span.innerX1, SpanEvent::LeaveInner, lens.index));
+        }
+        events.push_back(eventKey(span.x1, SpanEvent::Leave, lens.index));
+    }
+    std::sort(events.begin(), events.end());
+
+    // Sweep: between consecutive boundaries each lens is out, in (fullSet) or on its edge.
+    uint64_t fullSet = 0, edgeSet = 0;
+    for (std::size_t e = 0; e < events.size();) {
+        const int x = eventX(events[e]);
+        for (; e < events.size() && eventX(events[e]) == x; ++e) {
+            const uint64_t bit = lensBit(eventLens(events[e]));
+            switch (eventKind(events[e])) {
+            case SpanEvent::Enter: edgeSet |= bit; break;
+            case SpanEvent::EnterInner:
+                edgeSet &= ~bit;
+                fullSet |= bit;
+                break;
+            case SpanEvent::LeaveInner:
+                fullSet &= ~bit;
+                edgeSet |= bit;
+                break;
+            case SpanEvent::Leave: edgeSet &= ~bit; break;
+            }
+        }
+        if (e == events.size()) break;
+        const int next = eventX(events[e]);
+        if (edgeSet == 0) {
+            if (fullSet != 0) band.addRun(y, x, next, fullSet);
+        } else {
+            scanEdgePixels(y, x, next, fullSet, edgeSet, band);
+        }
+    }
+}
+
+void PolicyMapComposer::scanEdgePixels(int y, int x0, int x1, uint64_t fullSet, uint64_t edgeSet, Band &band) const {
+    // The lenses to ask, bottom → top: partly covering lenses are blended in this order, and
+    // past kMaxBlended the upper ones are rounded, exactly as a pixel-by-pixel scan does.
+    std::array<int, LensStack::kMaxLenses> edgeLens;
+    int edgeCount = 0;
+    for (uint64_t bits = edgeSet; bits != 0; bits &= bits - 1) edgeLens[size_t(edgeCount++)] = std::countr_zero(bits);
+
+    for (int x = x0; x < x1; ++x) {
+        const glm::vec2 centre{float(x) + 0.5f, float(y) + 0.5f};
+        uint64_t set = fullSet;
+        int partialCount = 0;
+        std::array<int, kMaxBlended> partialLens{};
+        std::array<float, kMaxBlended> partialWeight{};
+        for (int k = 0; k < edgeCount; ++k) {
+            const int lens = edgeLens[size_t(k)];
+            const float weight = m_snapshots[size_t(lens)]->region.coverage(centre, m_width, m_height);
+            if (weight >= 1.f) {
+                set |= lensBit(lens);
+            } else if (weight > 0.f) {
+                if (partialCount < kMaxBlended) {
+                    partialLens[size_t(partialCount)] = lens;
+                    partialWeight[size_t(partialCount++)] = weight;
+                } else if (weight >= 0.5f) {
+                    set |= lensBit(lens); // past the exact blend: round to in or out
+                }
+            }
+        }
+        if (partialCount == 0) {
+            if (set != 0) band.addRun(y, x, x + 1, set);
+            continue;
+        }
+        // Every subset of the partly covering lenses, weighted by the chance that exactly
+        // those apply: an exact blend of the images with and without each. Every subset's set
+        // is seen, even one whose weight rounds to 0, as the serial scan composes its policy.
+        const int subsets = 1 << partialCount;
+        std::array<PolicyTerm, kMaxSubsets> raw;
+        std::array<uint64_t, kMaxSubsets> subsetSet;
+        std::array<uint32_t, kMaxSubsets> subsetIndex;
+        for (int subset = 0; subset < subsets; ++subset) {
+            uint64_t s = set;
+            float weight = 1.f;
+            for (int j = 0; j < partialCount; ++j) {
+                const bool in = (subset >> j) & 1;
+                if (in) s |= lensBit(partialLens[size_t(j)]);
+                weight *= in ? partialWeight[size_t(j)] : 1.f - partialWeight[size_t(j)];
+            }
+            subsetSet[size_t(subset)] = s;
+            subsetIndex[size_t(subset)] = band.see(s);
+            raw[size_t(subset)] = {uint16_t(subset), weight}; // policy = subset until the merge
+        }
+        std::array<PolicyTerm, kMaxSubsets> normalised;
+        const std::size_t kept = PolicyMapBuilder::normaliseBlend(std::span(raw.data(), size_t(subsets)), normalised);
+        // The empty subset's weight, a product of at most 4 factors ≥ 2⁻²⁴, never rounds to 0,
+        // so at least one term is kept.
+        if (kept == 1) {
+            band.addRun(y, x, x + 1, subsetSet[normalised[0].policy]);
+            continue;
+        }
+        band.blends.push_back({y, x, uint32_t(band.terms.size()), uint32_t(kept)});
+        for (std::size_t i = 0; i < kept; ++i)
+            band.terms.push_back({subsetIndex[normalised[i].policy], normalised[i].weight});
+    }
+}
+
+void PolicyMapComposer::mergeBands(std::vector<Band> &bands, PolicyMap &map) const {
+    PolicyMapBuilder builder(map);
+    std::unordered_map<uint64_t, uint16_t> policyOf{{0, 0}};
+    for (Band &band : bands) {
+        band.firstMix = builder.mixCount();
+        band.firstTerm = builder.termCount();
+        const std::vector<uint64_t> &sets = band.sets();
+        band.policyOfSet.resize(sets.size());
+        std::size_t reserved = 0; // blends of this band with room in the tables
+        for (std::size_t i = 0; i < sets.size(); ++i) {
+            const auto [it, added] = policyOf.try_emplace(sets[i], 0);
+            if (added) {
+                // The policy's own mix goes after the blends scanned before the set was met.
+                const std::size_t before = band.blendsBeforeSet[i];
+                builder.reserveBlends(before - reserved, band.termsOfBlends(reserved, before));
+                reserved = before;
+                it->second = map.addPolicy(policyOfSet(m_snapshots, m_base, sets[i]));
+                band.blendsBeforeNewPolicy.push_back(uint32_t(before));
+            }
+            band.policyOfSet[i] = it->second;
+        }
+        builder.reserveBlends(band.blends.size() - reserved, band.termsOfBlends(reserved, band.blends.size()));
+    }
+}
+
+void PolicyMapComposer::fillBand(const Band &band, PolicyMap &map) {
+    for (const Band::Run &run : band.runs) map.setRun(run.y, run.x0, run.x1, band.policyOfSet[run.set]);
+
+    // Walk the reserved entries in the order the merge laid them out: each new policy's own
+    // mix and term, then the blends up to the next one.
+    PolicyMapBuilder builder(map);
+    uint32_t mix = band.firstMix, term = band.firstTerm;
+    std::size_t nextNew = 0;
+    std::array<PolicyTerm, kMaxSubsets> terms;
+    for (std::size_t j = 0; j < band.blends.size(); ++j) {
+        for (; nextNew < band.blendsBeforeNewPolicy.size() && band.blendsBeforeNewPolicy[nextNew] <= j; ++nextNew) {
+            ++mix;
+            ++term;
+        }
+        const Band::Blend &blend = band.blends[j];
+        for (uint32_t i = 0; i < blend.termCount; ++i) {
+            const Band::Term &t = band.terms[blend.firstTerm + i];
+            terms[i] = {band.policyOfSet[t.set], t.weight};
+        }
+        builder.setPixelBlendAt(blend.x, blend.y, mix, term, std::span(terms.data(), blend.termCount));
+        ++mix;
+        term += blend.termCount;
+    }
+}
+
+} // namespace mvcl
