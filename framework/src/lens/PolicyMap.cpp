@@ -31,16 +31,6 @@ void PolicyMap::setRun(int y, int x0, int x1, uint16_t policy) {
     std::fill(row + x0, row + x1, m_singleMixOfPolicy[policy]);
 }
 
-std::size_t PolicyMap::normaliseBlend(std::span<const PolicyTerm> terms, std::span<PolicyTerm> normalised) {
-    float total = 0.f;
-    for (const PolicyTerm &t : terms)
-        if (t.weight > 0.f) total += t.weight;
-    std::size_t kept = 0;
-    for (const PolicyTerm &t : terms)
-        if (t.weight > 0.f) normalised[kept++] = {t.policy, t.weight / total};
-    return kept;
-}
-
 void PolicyMap::setPixelBlend(int x, int y, std::span<const PolicyTerm> terms) {
     int kept = 0;
     uint16_t last = 0;

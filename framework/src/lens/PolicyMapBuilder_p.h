@@ -1,15 +1,14 @@
 #pragma once
 /// \file PolicyMapBuilder_p.h
-/// Private to policy composition: fills a PolicyMap's blended pixels from several threads.
-/// PolicyMap::setPixelBlend appends each blend to the map's tables, so blends would have to be
-/// written one after the other. Here the composer first reserves room for every blend (on one
-/// thread, interleaved with addPolicy exactly as serial setPixelBlend calls would have been),
-/// and then threads write their blends into the reserved places. The tables come out the same
-/// as from the serial calls, entry for entry.
+/// Private to policy composition: fills a PolicyMap's blends in two steps. PolicyMap::
+/// setPixelBlend appends a blend to the map's tables and points its pixel at it in one go, so
+/// blends could only be set one after the other. Here one thread appends the blends (in the
+/// order serial setPixelBlend calls would have, interleaved with addPolicy), and then threads
+/// point their pixels at them. The tables come out the same as from the serial calls, entry
+/// for entry.
 
 #include <mvcl/lens/PolicyMap.h>
 
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -20,23 +19,24 @@ class PolicyMapBuilder {
 public:
     explicit PolicyMapBuilder(PolicyMap &map) : m_map(map) {}
 
-    /// Entries of the mix and term tables so far (reserved ones included).
-    uint32_t mixCount() const { return uint32_t(m_map.m_mixes.size()); }
-    uint32_t termCount() const { return uint32_t(m_map.m_terms.size()); }
-
-    /// One thread at a time: appends room for `mixes` blends with `terms` terms in all.
-    void reserveBlends(std::size_t mixes, std::size_t terms) {
-        m_map.m_mixes.resize(m_map.m_mixes.size() + mixes, PolicyMap::Mix{0, 0});
-        m_map.m_terms.resize(m_map.m_terms.size() + terms);
+    /// Room for `mixes` more mixes and `terms` more terms, so that appending does not move them.
+    void reserve(std::size_t mixes, std::size_t terms) {
+        m_map.m_mixes.reserve(m_map.m_mixes.size() + mixes);
+        m_map.m_terms.reserve(m_map.m_terms.size() + terms);
     }
 
-    /// Any thread, each blend once: pixel (x, y) blends `normalised` (weights > 0 that sum to
-    /// 1, at least two) stored at reserved mix `mix`, terms from `firstTerm` on.
-    void setPixelBlendAt(int x, int y, uint32_t mix, uint32_t firstTerm, std::span<const PolicyTerm> normalised) {
-        std::copy(normalised.begin(), normalised.end(), m_map.m_terms.begin() + firstTerm);
-        m_map.m_mixes[mix] = {firstTerm, uint32_t(normalised.size())};
-        m_map.m_mixOfPixel[m_map.offset(x, y)] = mix;
+    /// One thread at a time: appends a blend of `normalised` (weights > 0 that sum to 1, at
+    /// least two terms) and returns its mix index. No pixel uses it yet.
+    uint32_t appendBlend(std::span<const PolicyTerm> normalised) {
+        const uint32_t first = uint32_t(m_map.m_terms.size());
+        // One by one: a blend has a handful of terms, a memcpy call would cost more.
+        for (const PolicyTerm &term : normalised) m_map.m_terms.push_back(term);
+        m_map.m_mixes.push_back({first, uint32_t(normalised.size())});
+        return uint32_t(m_map.m_mixes.size() - 1);
     }
+
+    /// Any thread, each pixel from one thread only: pixel (x, y) uses mix `mix`.
+    void setPixelMix(int x, int y, uint32_t mix) { m_map.m_mixOfPixel[m_map.offset(x, y)] = mix; }
 
     /// PolicyMap::setPixelBlend's normalisation, so a blend written here has the same weights.
     static std::size_t normaliseBlend(std::span<const PolicyTerm> terms, std::span<PolicyTerm> normalised) {

@@ -50,6 +50,7 @@ public:
         int y, x;
         uint32_t firstTerm; // into terms
         uint32_t termCount; // ≥ 2
+        uint32_t mix = 0;   // set by the merge
     };
     struct Term {
         uint32_t set;
@@ -57,7 +58,8 @@ public:
     };
 
     /// The set's band-local number; the first time, notes how many blends came before it,
-    /// which is where its policy's own mix goes between the blends' mixes.
+    /// which is where its policy's own mix goes between the blends' mixes (as serial
+    /// addPolicy and setPixelBlend calls would have ordered them).
     uint32_t see(uint64_t set) {
         const auto [index, added] = m_sets.insert(set);
         if (added) blendsBeforeSet.push_back(uint32_t(blends.size()));
@@ -76,25 +78,16 @@ public:
         runs.push_back({y, x0, x1, index});
     }
     const std::vector<uint64_t> &sets() const { return m_sets.sets(); }
-    /// Terms of blends [first, end).
-    uint32_t termsOfBlends(std::size_t first, std::size_t end) const {
-        const auto termAt = [this](std::size_t blend) {
-            return blend < blends.size() ? blends[blend].firstTerm : uint32_t(terms.size());
-        };
-        return termAt(end) - termAt(first);
-    }
-
     std::vector<uint32_t> blendsBeforeSet; // per band-local set
     std::vector<Run> runs;
     std::vector<Blend> blends;
     std::vector<Term> terms;
     std::vector<uint64_t> events; // scratch of scanRow
+    // Scratch of scanRow: one row of coverage per active lens, and where each lens's row is.
+    std::unique_ptr<float[]> coverage;
+    std::array<const float *, LensStack::kMaxLenses> coverageOfLens{};
 
-    // Set by the merge.
-    std::vector<uint16_t> policyOfSet;           // band-local set → map policy
-    std::vector<uint32_t> blendsBeforeNewPolicy; // for each policy this band added, in order
-    uint32_t firstMix = 0;
-    uint32_t firstTerm = 0;
+    std::vector<uint16_t> policyOfSet; // band-local set → map policy, set by the merge
 
 private:
     LensSetIndex m_sets;
@@ -130,9 +123,12 @@ PolicyMap PolicyMapComposer::compose(int threads) const {
     std::vector<Band> bands(size_t((rows + kRowsPerBand - 1) / kRowsPerBand));
     parallelForChunks(bands.size(), threads, 1, [&](std::size_t begin, std::size_t end) {
         for (std::size_t b = begin; b < end; ++b) {
+            // Left uninitialised: every entry read is written first, for the row that reads it.
+            bands[b].coverage.reset(new float[m_active.size() * std::size_t(m_width)]);
             const int y0 = m_firstRow + int(b) * kRowsPerBand;
             const int y1 = std::min(m_endRow, y0 + kRowsPerBand);
             for (int y = y0; y < y1; ++y) scanRow(y, bands[b]);
+            bands[b].coverage.reset();
         }
     });
     mergeBands(bands, map);
@@ -145,10 +141,16 @@ PolicyMap PolicyMapComposer::compose(int threads) const {
 void PolicyMapComposer::scanRow(int y, Band &band) const {
     std::vector<uint64_t> &events = band.events;
     events.clear();
-    for (const ActiveLens &lens : m_active) {
+    for (std::size_t k = 0; k < m_active.size(); ++k) {
+        const ActiveLens &lens = m_active[k];
         if (y < lens.bounds.y0 || y >= lens.bounds.y1) continue;
         const LensRegion::RowSpan span = lens.region->rowSpan(y, m_width, m_height);
         if (span.x0 >= span.x1) continue;
+        // The lens's coverage on its edge parts, for the whole row at once: both edges of an
+        // ellipse batch into full SIMD lanes. Row buffer k is indexed by x.
+        float *row = band.coverage.get() + k * std::size_t(m_width);
+        lens.region->edgeCoverage(y, span, m_width, m_height, std::span(row + span.x0, std::size_t(span.x1 - span.x0)));
+        band.coverageOfLens[size_t(lens.index)] = row;
         events.push_back(eventKey(span.x0, SpanEvent::Enter, lens.index));
         if (span.innerX0 < span.innerX1) {
             events.push_back(eventKey(span.innerX0, SpanEvent::EnterInner, lens.index));
@@ -193,20 +195,27 @@ void PolicyMapComposer::scanEdgePixels(int y, int x0, int x1, uint64_t fullSet, 
     std::array<int, LensStack::kMaxLenses> edgeLens;
     int edgeCount = 0;
     for (uint64_t bits = edgeSet; bits != 0; bits &= bits - 1) edgeLens[size_t(edgeCount++)] = std::countr_zero(bits);
+    // Neighbouring blended pixels mostly share their partly covering lenses: the sets of the
+    // subsets and their band numbers are worked out again only when those change.
+    uint64_t cachedSet = 0;
+    uint32_t cachedLenses = 0; // 0: nothing cached
+    std::array<uint64_t, kMaxSubsets> subsetSet;
+    std::array<uint32_t, kMaxSubsets> subsetIndex;
 
     for (int x = x0; x < x1; ++x) {
-        const glm::vec2 centre{float(x) + 0.5f, float(y) + 0.5f};
         uint64_t set = fullSet;
         int partialCount = 0;
         std::array<int, kMaxBlended> partialLens{};
         std::array<float, kMaxBlended> partialWeight{};
+        uint32_t partialLenses = 0; // byte j: partialLens[j] + 1, one word to compare
         for (int k = 0; k < edgeCount; ++k) {
             const int lens = edgeLens[size_t(k)];
-            const float weight = m_snapshots[size_t(lens)]->region.coverage(centre, m_width, m_height);
+            const float weight = band.coverageOfLens[size_t(lens)][x];
             if (weight >= 1.f) {
                 set |= lensBit(lens);
             } else if (weight > 0.f) {
                 if (partialCount < kMaxBlended) {
+                    partialLenses |= uint32_t(lens + 1) << (8 * partialCount);
                     partialLens[size_t(partialCount)] = lens;
                     partialWeight[size_t(partialCount++)] = weight;
                 } else if (weight >= 0.5f) {
@@ -222,19 +231,22 @@ void PolicyMapComposer::scanEdgePixels(int y, int x0, int x1, uint64_t fullSet, 
         // those apply: an exact blend of the images with and without each. Every subset's set
         // is seen, even one whose weight rounds to 0, as the serial scan composes its policy.
         const int subsets = 1 << partialCount;
-        std::array<PolicyTerm, kMaxSubsets> raw;
-        std::array<uint64_t, kMaxSubsets> subsetSet;
-        std::array<uint32_t, kMaxSubsets> subsetIndex;
-        for (int subset = 0; subset < subsets; ++subset) {
-            uint64_t s = set;
-            float weight = 1.f;
-            for (int j = 0; j < partialCount; ++j) {
-                const bool in = (subset >> j) & 1;
-                if (in) s |= lensBit(partialLens[size_t(j)]);
-                weight *= in ? partialWeight[size_t(j)] : 1.f - partialWeight[size_t(j)];
+        if (set != cachedSet || partialLenses != cachedLenses) {
+            for (int subset = 0; subset < subsets; ++subset) {
+                uint64_t s = set;
+                for (int j = 0; j < partialCount; ++j)
+                    if ((subset >> j) & 1) s |= lensBit(partialLens[size_t(j)]);
+                subsetSet[size_t(subset)] = s;
+                subsetIndex[size_t(subset)] = band.see(s);
             }
-            subsetSet[size_t(subset)] = s;
-            subsetIndex[size_t(subset)] = band.see(s);
+            cachedSet = set;
+            cachedLenses = partialLenses;
+        }
+        std::array<PolicyTerm, kMaxSubsets> raw;
+        for (int subset = 0; subset < subsets; ++subset) {
+            float weight = 1.f;
+            for (int j = 0; j < partialCount; ++j)
+                weight *= (subset >> j) & 1 ? partialWeight[size_t(j)] : 1.f - partialWeight[size_t(j)];
             raw[size_t(subset)] = {uint16_t(subset), weight}; // policy = subset until the merge
         }
         std::array<PolicyTerm, kMaxSubsets> normalised;
@@ -245,7 +257,7 @@ void PolicyMapComposer::scanEdgePixels(int y, int x0, int x1, uint64_t fullSet, 
             band.addRun(y, x, x + 1, subsetSet[normalised[0].policy]);
             continue;
         }
-        band.blends.push_back({y, x, uint32_t(band.terms.size()), uint32_t(kept)});
+        band.blends.push_back({y, x, uint32_t(band.terms.size()), uint32_t(kept), 0});
         for (std::size_t i = 0; i < kept; ++i)
             band.terms.push_back({subsetIndex[normalised[i].policy], normalised[i].weight});
     }
@@ -253,52 +265,46 @@ void PolicyMapComposer::scanEdgePixels(int y, int x0, int x1, uint64_t fullSet, 
 
 void PolicyMapComposer::mergeBands(std::vector<Band> &bands, PolicyMap &map) const {
     PolicyMapBuilder builder(map);
+    std::size_t blends = 0, terms = 0, sets = 0;
+    for (const Band &band : bands) {
+        blends += band.blends.size();
+        terms += band.terms.size();
+        sets += band.sets().size();
+    }
+    builder.reserve(sets + blends, sets + terms); // at most: every set is a new policy
+
+    // Serial setPixelBlend calls would have appended each blend's mix after the policies of
+    // the sets seen before it: walk each band's sets and blends in the order they were met.
     std::unordered_map<uint64_t, uint16_t> policyOf{{0, 0}};
     for (Band &band : bands) {
-        band.firstMix = builder.mixCount();
-        band.firstTerm = builder.termCount();
-        const std::vector<uint64_t> &sets = band.sets();
-        band.policyOfSet.resize(sets.size());
-        std::size_t reserved = 0; // blends of this band with room in the tables
-        for (std::size_t i = 0; i < sets.size(); ++i) {
-            const auto [it, added] = policyOf.try_emplace(sets[i], 0);
-            if (added) {
-                // The policy's own mix goes after the blends scanned before the set was met.
-                const std::size_t before = band.blendsBeforeSet[i];
-                builder.reserveBlends(before - reserved, band.termsOfBlends(reserved, before));
-                reserved = before;
-                it->second = map.addPolicy(policyOfSet(m_snapshots, m_base, sets[i]));
-                band.blendsBeforeNewPolicy.push_back(uint32_t(before));
+        band.policyOfSet.resize(band.sets().size());
+        std::size_t next = 0; // the band's next blend to append
+        const auto appendBlendsBefore = [&](std::size_t end) {
+            std::array<PolicyTerm, kMaxSubsets> translated;
+            for (; next < end; ++next) {
+                Band::Blend &blend = band.blends[next];
+                for (uint32_t i = 0; i < blend.termCount; ++i) {
+                    const Band::Term &t = band.terms[blend.firstTerm + i];
+                    translated[i] = {band.policyOfSet[t.set], t.weight};
+                }
+                blend.mix = builder.appendBlend(std::span(translated.data(), blend.termCount));
             }
+        };
+        for (std::size_t i = 0; i < band.sets().size(); ++i) {
+            appendBlendsBefore(band.blendsBeforeSet[i]);
+            const uint64_t set = band.sets()[i];
+            const auto [it, added] = policyOf.try_emplace(set, 0);
+            if (added) it->second = map.addPolicy(policyOfSet(m_snapshots, m_base, set));
             band.policyOfSet[i] = it->second;
         }
-        builder.reserveBlends(band.blends.size() - reserved, band.termsOfBlends(reserved, band.blends.size()));
+        appendBlendsBefore(band.blends.size());
     }
 }
 
 void PolicyMapComposer::fillBand(const Band &band, PolicyMap &map) {
     for (const Band::Run &run : band.runs) map.setRun(run.y, run.x0, run.x1, band.policyOfSet[run.set]);
-
-    // Walk the reserved entries in the order the merge laid them out: each new policy's own
-    // mix and term, then the blends up to the next one.
     PolicyMapBuilder builder(map);
-    uint32_t mix = band.firstMix, term = band.firstTerm;
-    std::size_t nextNew = 0;
-    std::array<PolicyTerm, kMaxSubsets> terms;
-    for (std::size_t j = 0; j < band.blends.size(); ++j) {
-        for (; nextNew < band.blendsBeforeNewPolicy.size() && band.blendsBeforeNewPolicy[nextNew] <= j; ++nextNew) {
-            ++mix;
-            ++term;
-        }
-        const Band::Blend &blend = band.blends[j];
-        for (uint32_t i = 0; i < blend.termCount; ++i) {
-            const Band::Term &t = band.terms[blend.firstTerm + i];
-            terms[i] = {band.policyOfSet[t.set], t.weight};
-        }
-        builder.setPixelBlendAt(blend.x, blend.y, mix, term, std::span(terms.data(), blend.termCount));
-        ++mix;
-        term += blend.termCount;
-    }
+    for (const Band::Blend &blend : band.blends) builder.setPixelMix(blend.x, blend.y, blend.mix);
 }
 
 } // namespace mvcl

@@ -70,7 +70,16 @@ private:
 
     /// How a blend is normalised: the terms with weight > 0, in order, each divided by their
     /// sum, written to `normalised` (room for terms.size()). Returns how many were written.
-    static std::size_t normaliseBlend(std::span<const PolicyTerm> terms, std::span<PolicyTerm> normalised);
+    static std::size_t normaliseBlend(std::span<const PolicyTerm> terms, std::span<PolicyTerm> normalised) {
+        float total = 0.f;
+        for (const PolicyTerm &t : terms)
+            if (t.weight > 0.f) total += t.weight;
+        std::size_t kept = 0;
+        for (const PolicyTerm &t : terms)
+            if (t.weight > 0.f) normalised[kept++] = {t.policy, t.weight / total};
+        return kept;
+    }
+
     struct Mix {
         uint32_t first;
         uint32_t count;
