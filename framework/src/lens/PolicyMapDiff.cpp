@@ -1,0 +1,144 @@
+#include <mvcl/lens/PolicyMapDiff.h>
+
+#include <mvcl/core/Error.h>
+#include <mvcl/core/WorkerPool.h>
+
+#include <algorithm>
+#include <bit>
+#include <string>
+#include <utility>
+
+namespace mvcl {
+
+namespace {
+
+constexpr uint32_t kNoClass = 0xffffffffu;
+constexpr int kRowsPerChunk = 16;
+
+// A hash of what PixelPolicy::rendersLike compares (policies that render alike hash alike):
+// +0 and −0 compare equal and hash alike; clip slots past clipCount are left out.
+struct PolicyHash {
+    uint64_t value = 0xcbf29ce484222325ull;
+
+    void add(uint64_t v) { value = (value ^ v) * 0x100000001b3ull; }
+    void add(float f) { add(uint64_t(f == 0.f ? 0u : std::bit_cast<uint32_t>(f))); }
+    void add(const glm::vec3 &v) {
+        for (int i = 0; i < 3; ++i) add(v[i]);
+    }
+    void add(const glm::mat3 &m) {
+        for (int c = 0; c < 3; ++c) add(m[c]);
+    }
+    void add(const RayQuery &q) {
+        add(q.tMin);
+        add(q.tMax);
+        add(uint64_t(q.layerMask));
+        add(uint64_t(q.clipCount));
+        for (int i = 0; i < q.clipCount; ++i) {
+            const ClipVolume &clip = q.clips[size_t(i)];
+            add(uint64_t(clip.shape) << 8 | uint64_t(clip.keep));
+            add(clip.a);
+            add(clip.b);
+            add(clip.radius);
+        }
+    }
+    void add(const PixelPolicy &p) {
+        for (const RayQuery &q : p.ray.visibility) add(q);
+        const ShadingPolicy &s = p.ray.shading;
+        add(uint64_t(s.shadows) | uint64_t(s.reflections) << 1 | uint64_t(s.refractions) << 2);
+        add(s.shadowStrength);
+        add(s.shadowTint);
+        add(uint64_t(uint32_t(s.maxDepth)));
+        add(p.ray.color.matrix);
+        add(p.ray.color.offset);
+        add(p.sampleFromScreen);
+    }
+};
+
+uint64_t renderHash(const PixelPolicy &policy) {
+    PolicyHash hash;
+    hash.add(policy);
+    return hash.value;
+}
+
+/// Each policy's class: the smallest index of a `reference` policy that renders like it, or
+/// kNoClass. Hashing keeps this linear in the number of policies.
+class PolicyClasses {
+public:
+    explicit PolicyClasses(const std::vector<PixelPolicy> &reference) : m_reference(reference) {
+        m_byHash.reserve(reference.size());
+        for (uint32_t i = 0; i < reference.size(); ++i) m_byHash.push_back({renderHash(reference[i]), i});
+        std::sort(m_byHash.begin(), m_byHash.end()); // equal hashes in index order
+    }
+
+    uint32_t classOf(const PixelPolicy &policy) const {
+        const uint64_t hash = renderHash(policy);
+        auto it = std::lower_bound(m_byHash.begin(), m_byHash.end(), std::pair<uint64_t, uint32_t>{hash, 0});
+        for (; it != m_byHash.end() && it->first == hash; ++it)
+            if (m_reference[it->second].rendersLike(policy)) return it->second;
+        return kNoClass;
+    }
+
+private:
+    const std::vector<PixelPolicy> &m_reference;
+    std::vector<std::pair<uint64_t, uint32_t>> m_byHash;
+};
+
+std::vector<uint32_t> classesOf(const std::vector<PixelPolicy> &policies, const PolicyClasses &classes) {
+    std::vector<uint32_t> result(policies.size());
+    for (size_t i = 0; i < policies.size(); ++i) result[i] = classes.classOf(policies[i]);
+    return result;
+}
+
+} // namespace
+
+void markChangedPixels(const PolicyMap &before, const PolicyMap &after, const PixelRect &area,
+                       std::vector<uint8_t> &changed, int threads) {
+    const int width = after.width(), height = after.height();
+    if (before.width() != width || before.height() != height)
+        throw Error("policy map", "cannot compare a " + std::to_string(before.width()) + "x" +
+                                      std::to_string(before.height()) + " map with a " + std::to_string(width) +
+                                      "x" + std::to_string(height) + " one");
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    if (changed.size() < pixels) changed.resize(pixels, 0);
+    const int x0 = std::max(area.x0, 0), x1 = std::min(area.x1, width);
+    const int y0 = std::max(area.y0, 0), y1 = std::min(area.y1, height);
+    if (x0 >= x1 || y0 >= y1) return;
+
+    // Policy indices are mapped once, not per pixel: a policy of either map becomes the
+    // smallest index of a `before` policy that renders like it. Equal classes render alike.
+    const PolicyClasses classes(before.policies());
+    const std::vector<uint32_t> classBefore = classesOf(before.policies(), classes);
+    const std::vector<uint32_t> classAfter = classesOf(after.policies(), classes);
+
+    const auto mixesDiffer = [&](uint32_t mixBefore, uint32_t mixAfter) {
+        const std::span<const PolicyTerm> b = before.mixTerms(mixBefore), a = after.mixTerms(mixAfter);
+        if (a.size() != b.size()) return true;
+        for (std::size_t i = 0; i < a.size(); ++i)
+            if (classAfter[a[i].policy] != classBefore[b[i].policy] || a[i].weight != b[i].weight) return true;
+        return false;
+    };
+
+    const std::size_t rows = std::size_t(y1 - y0);
+    parallelForChunks(rows, threads, kRowsPerChunk, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t r = begin; r < end; ++r) {
+            const int y = y0 + int(r);
+            const uint32_t *rowBefore = before.rowMixIndices(y).data();
+            const uint32_t *rowAfter = after.rowMixIndices(y).data();
+            uint8_t *out = changed.data() + std::size_t(y) * std::size_t(width);
+            // Along a row the pair of mixes changes only at lens edges: compare terms there
+            // and reuse the answer until the pair changes again.
+            uint32_t lastBefore = rowBefore[x0], lastAfter = rowAfter[x0];
+            bool differ = mixesDiffer(lastBefore, lastAfter);
+            for (int x = x0; x < x1; ++x) {
+                if (rowBefore[x] != lastBefore || rowAfter[x] != lastAfter) {
+                    lastBefore = rowBefore[x];
+                    lastAfter = rowAfter[x];
+                    differ = mixesDiffer(lastBefore, lastAfter);
+                }
+                if (differ) out[x] = 1;
+            }
+        }
+    });
+}
+
+} // namespace mvcl
