@@ -11,9 +11,9 @@
 /// Bands of rows are scanned in parallel; each numbers its lens sets in the order it meets
 /// them. One thread then merges the bands in order: a set gets its policy the first time any
 /// band met it, which is the order of a serial row-major scan, whatever the thread count. The
-/// same pass reserves the mix table entries of every blend between the policies' own entries,
-/// as serial setPixelBlend calls would have left them, and the bands fill runs and blends in
-/// parallel again.
+/// same pass appends every blend's terms and mix after the policies met before it, as serial
+/// addPolicy and setPixelBlend calls would have, and the bands then fill their runs and point
+/// their blended pixels at their mixes in parallel again.
 
 #include <mvcl/lens/Lens.h>
 #include <mvcl/lens/PixelPolicy.h>
