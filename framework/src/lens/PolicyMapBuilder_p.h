@@ -25,13 +25,15 @@ public:
         m_map.m_terms.reserve(m_map.m_terms.size() + terms);
     }
 
-    /// One thread at a time: appends a blend of `normalised` (weights > 0 that sum to 1, at
-    /// least two terms) and returns its mix index. No pixel uses it yet.
-    uint32_t appendBlend(std::span<const PolicyTerm> normalised) {
+    /// One thread at a time: appends a blend of the `count` terms termAt(0), termAt(1), ...
+    /// (weights > 0 that sum to 1, at least two) and returns its mix index. No pixel uses it
+    /// yet. The terms come one by one from termAt, which builds each in registers: a handful
+    /// per blend is too few for a memcpy, and a staging array read back whole would stall on
+    /// its field-by-field stores.
+    template <class TermAt> uint32_t appendBlend(uint32_t count, TermAt termAt) {
         const uint32_t first = uint32_t(m_map.m_terms.size());
-        // One by one: a blend has a handful of terms, a memcpy call would cost more.
-        for (const PolicyTerm &term : normalised) m_map.m_terms.push_back(term);
-        m_map.m_mixes.push_back({first, uint32_t(normalised.size())});
+        for (uint32_t i = 0; i < count; ++i) m_map.m_terms.push_back(termAt(i));
+        m_map.m_mixes.push_back({first, count});
         return uint32_t(m_map.m_mixes.size() - 1);
     }
 

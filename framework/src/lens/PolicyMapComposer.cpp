@@ -193,8 +193,13 @@ void PolicyMapComposer::scanEdgePixels(int y, int x0, int x1, uint64_t fullSet, 
     // The lenses to ask, bottom → top: partly covering lenses are blended in this order, and
     // past kMaxBlended the upper ones are rounded, exactly as a pixel-by-pixel scan does.
     std::array<int, LensStack::kMaxLenses> edgeLens;
+    std::array<const float *, LensStack::kMaxLenses> edgeCoverage; // each one's row, by x
     int edgeCount = 0;
-    for (uint64_t bits = edgeSet; bits != 0; bits &= bits - 1) edgeLens[size_t(edgeCount++)] = std::countr_zero(bits);
+    for (uint64_t bits = edgeSet; bits != 0; bits &= bits - 1) {
+        const int lens = std::countr_zero(bits);
+        edgeLens[size_t(edgeCount)] = lens;
+        edgeCoverage[size_t(edgeCount++)] = band.coverageOfLens[size_t(lens)];
+    }
     // Neighbouring blended pixels mostly share their partly covering lenses: the sets of the
     // subsets and their band numbers are worked out again only when those change.
     uint64_t cachedSet = 0;
@@ -210,7 +215,7 @@ void PolicyMapComposer::scanEdgePixels(int y, int x0, int x1, uint64_t fullSet, 
         uint32_t partialLenses = 0; // byte j: partialLens[j] + 1, one word to compare
         for (int k = 0; k < edgeCount; ++k) {
             const int lens = edgeLens[size_t(k)];
-            const float weight = band.coverageOfLens[size_t(lens)][x];
+            const float weight = edgeCoverage[size_t(k)][x];
             if (weight >= 1.f) {
                 set |= lensBit(lens);
             } else if (weight > 0.f) {
@@ -241,6 +246,17 @@ void PolicyMapComposer::scanEdgePixels(int y, int x0, int x1, uint64_t fullSet, 
             }
             cachedSet = set;
             cachedLenses = partialLenses;
+        }
+        if (partialCount == 1) {
+            // The common case, one feathered edge: the general code below computes weights
+            // 1·(1 − w) and 1·w, both > 0 as 0 < w < 1, and divides each by 0 + (1 − w) + w.
+            // The same operations, without the loops.
+            const float weight = partialWeight[0], outside = 1.f - weight;
+            const float total = outside + weight;
+            band.blends.push_back({y, x, uint32_t(band.terms.size()), 2, 0});
+            band.terms.push_back({subsetIndex[0], outside / total});
+            band.terms.push_back({subsetIndex[1], weight / total});
+            continue;
         }
         std::array<PolicyTerm, kMaxSubsets> raw;
         for (int subset = 0; subset < subsets; ++subset) {
@@ -280,14 +296,13 @@ void PolicyMapComposer::mergeBands(std::vector<Band> &bands, PolicyMap &map) con
         band.policyOfSet.resize(band.sets().size());
         std::size_t next = 0; // the band's next blend to append
         const auto appendBlendsBefore = [&](std::size_t end) {
-            std::array<PolicyTerm, kMaxSubsets> translated;
             for (; next < end; ++next) {
                 Band::Blend &blend = band.blends[next];
-                for (uint32_t i = 0; i < blend.termCount; ++i) {
-                    const Band::Term &t = band.terms[blend.firstTerm + i];
-                    translated[i] = {band.policyOfSet[t.set], t.weight};
-                }
-                blend.mix = builder.appendBlend(std::span(translated.data(), blend.termCount));
+                const Band::Term *terms = band.terms.data() + blend.firstTerm;
+                const uint16_t *policyOfSet = band.policyOfSet.data(); // not reloaded per term
+                blend.mix = builder.appendBlend(blend.termCount, [terms, policyOfSet](uint32_t i) {
+                    return PolicyTerm{policyOfSet[terms[i].set], terms[i].weight};
+                });
             }
         };
         for (std::size_t i = 0; i < band.sets().size(); ++i) {
