@@ -1,6 +1,7 @@
 #include <mvcl/lens/LensRegion.h>
 
 #include "EllipseCoverage4_p.h"
+#include "EllipseRampBatch_p.h"
 
 #include <mvcl/core/Error.h>
 
@@ -216,60 +217,13 @@ float LensRegion::coverage(const glm::vec2 &pixel, int width, int height) const 
     return t * t * (3.f - 2.f * t);
 }
 
-#if defined(__SSE2__)
-namespace {
-/// Pixels of a row that the implicit equation left unsettled, collected so that the iteration
-/// runs on full lanes and several chains at once.
-class EllipseRampBatch {
-public:
-    EllipseRampBatch(const detail::EllipseCoverageShape &ellipse, int y, int firstX, std::span<float> coverage)
-        : m_ellipse(ellipse), m_y(_mm_set1_ps(float(y) + 0.5f)), m_firstX(firstX), m_coverage(coverage) {}
-    void add(int x) {
-        m_pending[m_count++] = x;
-        if (m_count == kCapacity) flush();
-    }
-
-    void flush() {
-        if (m_count == 0) return;
-        const int chains = (m_count + 3) / 4;
-        alignas(16) float centres[kCapacity];
-        for (int i = 0; i < 4 * chains; ++i) centres[i] = float(m_pending[std::min(i, m_count - 1)]) + 0.5f;
-        alignas(16) float ramp[kCapacity];
-        switch (chains) {
-        case 1: run<1>(centres, ramp); break;
-        case 2: run<2>(centres, ramp); break;
-        case 3: run<3>(centres, ramp); break;
-        default: run<4>(centres, ramp); break;
-        }
-        for (int i = 0; i < m_count; ++i) m_coverage[std::size_t(m_pending[i] - m_firstX)] = ramp[i];
-        m_count = 0;
-    }
-
-private:
-    static constexpr int kCapacity = 16; // four chains of four lanes
-    template <int Chains> void run(const float *centres, float *ramp) const {
-        __m128 x[Chains], out[Chains];
-        for (int c = 0; c < Chains; ++c) x[c] = _mm_load_ps(centres + 4 * c);
-        detail::ellipseRamp4(m_ellipse, x, m_y, out);
-        for (int c = 0; c < Chains; ++c) _mm_store_ps(ramp + 4 * c, out[c]);
-    }
-
-    const detail::EllipseCoverageShape &m_ellipse;
-    __m128 m_y;
-    int m_firstX;
-    std::span<float> m_coverage;
-    int m_pending[kCapacity];
-    int m_count = 0;
-};
-} // namespace
-#endif
 
 void LensRegion::edgeCoverage(int y, const RowSpan &span, int width, int height, std::span<float> coverage) const {
     const std::pair<int, int> parts[2] = {{span.x0, span.innerX0}, {span.innerX1, span.x1}};
 #if defined(__SSE2__)
     if (const auto ellipse = featheredEllipse(m_shape, m_center, m_size, m_feather, width, height)) {
         const __m128 centreY = _mm_set1_ps(float(y) + 0.5f);
-        EllipseRampBatch batch(*ellipse, y, span.x0, coverage);
+        detail::EllipseRampBatch batch(*ellipse, y, span.x0, coverage);
         for (const auto &[from, to] : parts) {
             for (int x = from; x < to; x += 4) {
                 const __m128 centreX =

@@ -15,78 +15,60 @@ namespace {
 constexpr uint32_t kNoClass = 0xffffffffu;
 constexpr int kRowsPerChunk = 16;
 
-// A hash of what PixelPolicy::rendersLike compares (policies that render alike hash alike):
-// +0 and −0 compare equal and hash alike; clip slots past clipCount are left out.
-struct PolicyHash {
-    uint64_t value = 0xcbf29ce484222325ull;
-
-    void add(uint64_t v) { value = (value ^ v) * 0x100000001b3ull; }
-    void add(float f) { add(uint64_t(f == 0.f ? 0u : std::bit_cast<uint32_t>(f))); }
-    void add(const glm::vec3 &v) {
-        for (int i = 0; i < 3; ++i) add(v[i]);
-    }
-    void add(const glm::mat3 &m) {
-        for (int c = 0; c < 3; ++c) add(m[c]);
-    }
-    void add(const RayQuery &q) {
-        add(q.tMin);
-        add(q.tMax);
-        add(uint64_t(q.layerMask));
-        add(uint64_t(q.clipCount));
+// FNV-1a over what PixelPolicy::rendersLike compares, so that policies that render alike hash
+// alike: +0 and −0 (equal) hash alike, clip slots past clipCount are left out.
+uint64_t renderHash(const PixelPolicy &p) {
+    uint64_t hash = 0xcbf29ce484222325ull;
+    const auto add = [&hash](uint64_t v) { hash = (hash ^ v) * 0x100000001b3ull; };
+    const auto addFloat = [&add](float f) { add(f == 0.f ? 0u : std::bit_cast<uint32_t>(f)); };
+    const auto addVec3 = [&addFloat](const glm::vec3 &v) {
+        for (int i = 0; i < 3; ++i) addFloat(v[i]);
+    };
+    const auto addMat3 = [&addVec3](const glm::mat3 &m) {
+        for (int c = 0; c < 3; ++c) addVec3(m[c]);
+    };
+    for (const RayQuery &q : p.ray.visibility) {
+        addFloat(q.tMin);
+        addFloat(q.tMax);
+        add(q.layerMask);
+        add(q.clipCount);
         for (int i = 0; i < q.clipCount; ++i) {
             const ClipVolume &clip = q.clips[size_t(i)];
             add(uint64_t(clip.shape) << 8 | uint64_t(clip.keep));
-            add(clip.a);
-            add(clip.b);
-            add(clip.radius);
+            addVec3(clip.a);
+            addVec3(clip.b);
+            addFloat(clip.radius);
         }
     }
-    void add(const PixelPolicy &p) {
-        for (const RayQuery &q : p.ray.visibility) add(q);
-        const ShadingPolicy &s = p.ray.shading;
-        add(uint64_t(s.shadows) | uint64_t(s.reflections) << 1 | uint64_t(s.refractions) << 2);
-        add(s.shadowStrength);
-        add(s.shadowTint);
-        add(uint64_t(uint32_t(s.maxDepth)));
-        add(p.ray.color.matrix);
-        add(p.ray.color.offset);
-        add(p.sampleFromScreen);
-    }
-};
-
-uint64_t renderHash(const PixelPolicy &policy) {
-    PolicyHash hash;
-    hash.add(policy);
-    return hash.value;
+    const ShadingPolicy &s = p.ray.shading;
+    add(uint64_t(s.shadows) | uint64_t(s.reflections) << 1 | uint64_t(s.refractions) << 2);
+    addFloat(s.shadowStrength);
+    addVec3(s.shadowTint);
+    add(uint32_t(s.maxDepth));
+    addMat3(p.ray.color.matrix);
+    addVec3(p.ray.color.offset);
+    addMat3(p.sampleFromScreen);
+    return hash;
 }
 
-/// Each policy's class: the smallest index of a `reference` policy that renders like it, or
-/// kNoClass. Hashing keeps this linear in the number of policies.
-class PolicyClasses {
-public:
-    explicit PolicyClasses(const std::vector<PixelPolicy> &reference) : m_reference(reference) {
-        m_byHash.reserve(reference.size());
-        for (uint32_t i = 0; i < reference.size(); ++i) m_byHash.push_back({renderHash(reference[i]), i});
-        std::sort(m_byHash.begin(), m_byHash.end()); // equal hashes in index order
+/// For each of `policies`, the smallest index of a `reference` policy that renders like it,
+/// or kNoClass. Equal hashes narrow the search, so this is linear in the number of policies.
+std::vector<uint32_t> classesIn(const std::vector<PixelPolicy> &reference, const std::vector<PixelPolicy> &policies) {
+    std::vector<std::pair<uint64_t, uint32_t>> byHash;
+    byHash.reserve(reference.size());
+    for (uint32_t i = 0; i < reference.size(); ++i) byHash.push_back({renderHash(reference[i]), i});
+    std::sort(byHash.begin(), byHash.end()); // equal hashes in index order
+    std::vector<uint32_t> classes(policies.size(), kNoClass);
+    for (size_t p = 0; p < policies.size(); ++p) {
+        const uint64_t hash = renderHash(policies[p]);
+        for (auto it = std::lower_bound(byHash.begin(), byHash.end(), std::pair<uint64_t, uint32_t>{hash, 0});
+             it != byHash.end() && it->first == hash; ++it)
+            if (reference[it->second].rendersLike(policies[p])) {
+                classes[p] = it->second;
+                break;
+            }
     }
-
-    uint32_t classOf(const PixelPolicy &policy) const {
-        const uint64_t hash = renderHash(policy);
-        auto it = std::lower_bound(m_byHash.begin(), m_byHash.end(), std::pair<uint64_t, uint32_t>{hash, 0});
-        for (; it != m_byHash.end() && it->first == hash; ++it)
-            if (m_reference[it->second].rendersLike(policy)) return it->second;
-        return kNoClass;
-    }
-
-private:
-    const std::vector<PixelPolicy> &m_reference;
-    std::vector<std::pair<uint64_t, uint32_t>> m_byHash;
-};
-
-std::vector<uint32_t> classesOf(const std::vector<PixelPolicy> &policies, const PolicyClasses &classes) {
-    std::vector<uint32_t> result(policies.size());
-    for (size_t i = 0; i < policies.size(); ++i) result[i] = classes.classOf(policies[i]);
-    return result;
+    return classes;
 }
 
 } // namespace
@@ -106,9 +88,8 @@ void markChangedPixels(const PolicyMap &before, const PolicyMap &after, const Pi
 
     // Policy indices are mapped once, not per pixel: a policy of either map becomes the
     // smallest index of a `before` policy that renders like it. Equal classes render alike.
-    const PolicyClasses classes(before.policies());
-    const std::vector<uint32_t> classBefore = classesOf(before.policies(), classes);
-    const std::vector<uint32_t> classAfter = classesOf(after.policies(), classes);
+    const std::vector<uint32_t> classBefore = classesIn(before.policies(), before.policies());
+    const std::vector<uint32_t> classAfter = classesIn(before.policies(), after.policies());
 
     const auto mixesDiffer = [&](uint32_t mixBefore, uint32_t mixAfter) {
         const std::span<const PolicyTerm> b = before.mixTerms(mixBefore), a = after.mixTerms(mixAfter);
