@@ -400,7 +400,7 @@ std::shared_ptr<Lens> cloneWithRegion(const LensFactory &create, const Lens &len
             };
             for (int t = 0; t < kRayTypeCount; ++t) {
                 const RayQuery expected = has(RayType(t)) ? full.visibility[t] : RayQuery{};
-                if (!sameQuery(c.visibility[t], expected)) return fail("visibility of a ray type is wrong");
+                if (!(c.visibility[t] == expected)) return fail("visibility of a ray type is wrong");
             }
             if (c.sampleFromScreen != (has(RayType::Primary) ? full.sampleFromScreen : glm::mat3(1.f)))
                 return fail("ray shaping is wrong");
@@ -412,7 +412,7 @@ std::shared_ptr<Lens> cloneWithRegion(const LensFactory &create, const Lens &len
             if (c.shading.reflections != (has(RayType::Reflection) ? full.shading.reflections : std::nullopt) ||
                 c.shading.refractions != (has(RayType::Refraction) ? full.shading.refractions : std::nullopt))
                 return fail("secondary-ray switches are wrong");
-            if (!sameColor(c.color, full.color)) return fail("the colour stage was dropped");
+            if (!(c.color == full.color)) return fail("the colour stage was dropped");
         }
 
         // rays = none, rendered: only the colour stage may remain.
@@ -428,7 +428,7 @@ std::shared_ptr<Lens> cloneWithRegion(const LensFactory &create, const Lens &len
             for (const PixelPolicy &policy : map.policies()) {
                 PixelPolicy withoutColor = policy;
                 withoutColor.ray.color = ColorPolicy{};
-                if (!samePolicy(withoutColor, PixelPolicy{}))
+                if (!withoutColor.rendersLike(PixelPolicy{}))
                     return ::testing::AssertionFailure()
                            << "with rays=none a policy changes more than colour: "
                            << describePolicy(policy);
@@ -461,7 +461,7 @@ std::shared_ptr<Lens> cloneWithRegion(const LensFactory &create, const Lens &len
             lastVersion = version;
             const PolicyMap map = stack.compose(RayPolicy{}, kWidth, kHeight);
             const PixelPolicy &centre = map.dominantPolicy(kWidth / 2, kHeight / 2);
-            if (out.policies.empty() || !samePolicy(out.policies.back(), centre))
+            if (out.policies.empty() || !out.policies.back().rendersLike(centre))
                 out.policies.push_back(centre);
             if (render) (void)renderMap(map, 1);
             ++out.composes;
@@ -501,7 +501,7 @@ std::shared_ptr<Lens> cloneWithRegion(const LensFactory &create, const Lens &len
             return ::testing::AssertionFailure() << "a reader saw the snapshot version decrease";
         for (const PixelPolicy &policy : observations.policies)
             if (std::none_of(possible.begin(), possible.end(),
-                             [&](const PixelPolicy &p) { return samePolicy(p, policy); }))
+                             [&](const PixelPolicy &p) { return p.rendersLike(policy); }))
                 return ::testing::AssertionFailure()
                        << "a composed policy matches no committed snapshot: " << describePolicy(policy);
     }

@@ -102,36 +102,6 @@ std::string describeValues(const Lens &lens) {
 // ---------------------------------------------------------------------------------------------
 // Comparing policies and images
 
-bool sameQuery(const RayQuery &a, const RayQuery &b) {
-    if (a.tMin != b.tMin || a.tMax != b.tMax || a.layerMask != b.layerMask ||
-        a.clipCount != b.clipCount)
-        return false;
-    for (int i = 0; i < a.clipCount; ++i) {
-        const ClipVolume &p = a.clips[i], &q = b.clips[i];
-        if (p.shape != q.shape || p.keep != q.keep || p.a != q.a || p.b != q.b ||
-            p.radius != q.radius)
-            return false;
-    }
-    return true;
-}
-
-bool sameShading(const ShadingPolicy &a, const ShadingPolicy &b) {
-    return a.shadows == b.shadows && a.shadowStrength == b.shadowStrength &&
-           a.shadowTint == b.shadowTint && a.reflections == b.reflections &&
-           a.refractions == b.refractions && a.maxDepth == b.maxDepth;
-}
-
-bool sameColor(const ColorPolicy &a, const ColorPolicy &b) {
-    return a.matrix == b.matrix && a.offset == b.offset;
-}
-
-bool samePolicy(const PixelPolicy &a, const PixelPolicy &b) {
-    for (int t = 0; t < kRayTypeCount; ++t)
-        if (!sameQuery(a.ray.visibility[t], b.ray.visibility[t])) return false;
-    return sameShading(a.ray.shading, b.ray.shading) && sameColor(a.ray.color, b.ray.color) &&
-           a.sampleFromScreen == b.sampleFromScreen;
-}
-
 std::string describePolicy(const PixelPolicy &p) {
     std::ostringstream out;
     for (int t = 0; t < kRayTypeCount; ++t) {
@@ -162,7 +132,7 @@ std::string describePolicy(const PixelPolicy &p) {
             bool same = ta.size() == tb.size();
             for (std::size_t i = 0; same && i < ta.size(); ++i)
                 same = ta[i].weight == tb[i].weight &&
-                       samePolicy(a.policy(ta[i].policy), b.policy(tb[i].policy));
+                       a.policy(ta[i].policy).rendersLike(b.policy(tb[i].policy));
             if (!same)
                 return ::testing::AssertionFailure()
                        << "pixel (" << x << ", " << y << ") differs: " << ta.size() << " vs "

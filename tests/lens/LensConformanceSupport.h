@@ -49,13 +49,6 @@ std::string describeValues(const Lens &lens);
 // ---------------------------------------------------------------------------------------------
 // Comparing policies and images
 
-bool sameQuery(const RayQuery &a, const RayQuery &b);
-bool sameShading(const ShadingPolicy &a, const ShadingPolicy &b);
-bool sameColor(const ColorPolicy &a, const ColorPolicy &b);
-
-/// Equal policies; the lens set is left out because it names stack positions, not effects.
-bool samePolicy(const PixelPolicy &a, const PixelPolicy &b);
-
 /// Every field of `p` on one line, for failure messages.
 std::string describePolicy(const PixelPolicy &p);
 

@@ -7,7 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <random>
+#include <span>
 #include <vector>
 
 using namespace mvcl;
@@ -331,4 +334,117 @@ TEST(LensRegion, DegenerateRegionsNeverProduceNaNCoverage) {
             (void)r.pixelBounds(20, 20);
         }
     }
+}
+
+namespace {
+
+// Random regions drawn from the generator's raw output (every standard library draws the same).
+float uniform(std::mt19937 &random, float lo, float hi) {
+    return lo + (hi - lo) * float(random() >> 8) * (1.f / 16777216.f);
+}
+
+/// Ellipses of every kind the fast paths must get right: thin, tiny (under a pixel), huge, far
+/// off screen, feathered wider than they are.
+LensRegion randomEllipse(std::mt19937 &random) {
+    const float scale = std::pow(10.f, uniform(random, -2.5f, 2.f));
+    const glm::vec2 size{scale * uniform(random, 0.05f, 1.f), scale * uniform(random, 0.05f, 1.f)};
+    const glm::vec2 center{uniform(random, -0.5f, 1.5f), uniform(random, -0.5f, 1.5f)};
+    LensRegion region = LensRegion::ellipse(center, size);
+    switch (random() % 4) {
+    case 0: break;
+    case 1: region.setFeather(uniform(random, 0.1f, 3.f)); break;
+    case 2: region.setFeather(uniform(random, 3.f, 30.f)); break;
+    default: region.setFeather(uniform(random, 30.f, 400.f)); break;
+    }
+    return region;
+}
+
+/// coverage() as the scalar code computes it from signedDistance(): what the 4-wide ellipse
+/// kernel must reproduce bit for bit.
+float scalarCoverage(const LensRegion &region, const glm::vec2 &pixel, int width, int height) {
+    const glm::vec2 imageSize{float(width), float(height)};
+    if (region.shape() == LensRegion::Shape::Ellipse) {
+        const glm::vec2 radii = 0.5f * region.size() * imageSize;
+        const glm::vec2 scaled = glm::abs(pixel - region.center() * imageSize) / radii;
+        const float radiusSquared = glm::dot(scaled, scaled);
+        if (!(radiusSquared <= 1.f)) return 0.f;
+        if (!(region.feather() > 0.f)) return 1.f;
+        if ((1.f - std::sqrt(radiusSquared)) * std::min(radii.x, radii.y) >= region.feather()) return 1.f;
+    }
+    const float distance = region.signedDistance(pixel, width, height);
+    if (!(region.feather() > 0.f)) return distance >= 0.f ? 1.f : 0.f;
+    if (!(distance > 0.f)) return 0.f;
+    const float t = std::min(distance / region.feather(), 1.f);
+    return t * t * (3.f - 2.f * t);
+}
+
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+} // namespace
+
+TEST(LensRegion, EllipseCoverageIsTheScalarComputationBitForBit) {
+    std::mt19937 random(7);
+    for (int round = 0; round < 400; ++round) {
+        const LensRegion region = randomEllipse(random);
+        const int width = 1 + int(random() % 400), height = 1 + int(random() % 300);
+        const glm::vec2 c = region.center() * glm::vec2(float(width), float(height));
+        const glm::vec2 half = 0.5f * region.size() * glm::vec2(float(width), float(height));
+        for (int k = 0; k < 200; ++k) {
+            // Points near the boundary, where the iteration runs, and anywhere.
+            const float angle = uniform(random, 0.f, 6.2831853f);
+            const float radius = k % 2 ? uniform(random, 0.9f, 1.1f) : uniform(random, 0.f, 1.5f);
+            const glm::vec2 p = c + radius * half * glm::vec2(std::cos(angle), std::sin(angle));
+            const float expected = scalarCoverage(region, p, width, height);
+            const float actual = region.coverage(p, width, height);
+            ASSERT_TRUE(sameBits(expected, actual)) << "round " << round << " at " << p.x << "," << p.y
+                                                    << ": " << expected << " vs " << actual;
+        }
+    }
+}
+
+TEST(LensRegion, EdgeCoverageEqualsCoverageBitForBit) {
+    std::mt19937 random(11);
+    for (int round = 0; round < 300; ++round) {
+        LensRegion region = randomEllipse(random);
+        if (round % 4 == 1) {
+            region = LensRegion::rectangle(region.center(), region.size());
+            region.setFeather(uniform(random, 0.f, 12.f));
+        } else if (round % 4 == 2) {
+            region = LensRegion::polygon({{0.1f, 0.2f}, {0.8f, 0.1f}, {0.6f, 0.9f}, {0.3f, 0.5f}});
+            region.setFeather(uniform(random, 0.f, 12.f));
+        }
+        const int width = 1 + int(random() % 300), height = 1 + int(random() % 200);
+        std::vector<float> row(static_cast<size_t>(width));
+        for (int y = 0; y < height; ++y) {
+            const LensRegion::RowSpan span = region.rowSpan(y, width, height);
+            std::fill(row.begin(), row.end(), -1.f);
+            region.edgeCoverage(y, span, width, height, std::span(row).subspan(size_t(span.x0), size_t(span.x1 - span.x0)));
+            for (int x = span.x0; x < span.x1; ++x) {
+                const float value = row[size_t(x)];
+                if (x >= span.innerX0 && x < span.innerX1) {
+                    ASSERT_EQ(value, -1.f) << "the inner part is not written";
+                } else {
+                    ASSERT_TRUE(sameBits(value, region.coverage({float(x) + 0.5f, float(y) + 0.5f}, width, height)))
+                        << "round " << round << " pixel " << x << "," << y;
+                }
+            }
+        }
+    }
+}
+
+TEST(LensRegion, RowSpansHoldForEllipsesOfAnySizeAndPlace) {
+    // The span of an ellipse ends where the ellipse does (with a margin), not at its box.
+    std::mt19937 random(3);
+    for (int round = 0; round < 150; ++round)
+        expectBoundsHoldEveryCoveredPixel(randomEllipse(random), 1 + int(random() % 200), 1 + int(random() % 150));
+    for (const float scale : {1e3f, 1e5f}) // radii of 10⁵ and 10⁷ pixels, the edge on screen
+        for (const float feather : {0.f, 5.f}) {
+            LensRegion huge = LensRegion::ellipse({0.5f + 0.5f * scale, 0.5f}, {scale + 0.3f, 2.f * scale});
+            huge.setFeather(feather);
+            expectBoundsHoldEveryCoveredPixel(huge, 100, 100);
+        }
+    LensRegion ellipse = LensRegion::ellipse({0.5f, 0.5f}, {0.5f, 0.8f});
+    ellipse.setFeather(4.f);
+    const LensRegion::RowSpan nearTop = ellipse.rowSpan(25, 200, 200); // 5 rows below the top
+    EXPECT_LT(nearTop.x1 - nearTop.x0, 45) << "the chord is 36 pixels, the box 100";
 }

@@ -1,5 +1,8 @@
 #include <mvcl/lens/LensRegion.h>
 
+#include "EllipseCoverage4_p.h"
+#include "EllipseRampBatch_p.h"
+
 #include <mvcl/core/Error.h>
 
 #include <glm/geometric.hpp>
@@ -7,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace mvcl {
 
@@ -166,7 +170,35 @@ float LensRegion::signedDistance(const glm::vec2 &pixel, int width, int height) 
     return kFarOutside;
 }
 
+#if defined(__SSE2__)
+namespace {
+// The ellipse in pixels when coverage() would run its nearest-point iteration on it (feathered,
+// radii > 0); these go through the 4-wide kernel.
+std::optional<detail::EllipseCoverageShape> featheredEllipse(LensRegion::Shape shape, const glm::vec2 &center,
+                                                             const glm::vec2 &size, float feather, int width,
+                                                             int height) {
+    if (shape != LensRegion::Shape::Ellipse || !(feather > 0.f)) return std::nullopt;
+    const glm::vec2 imageSize{float(width), float(height)};
+    const glm::vec2 c = center * imageSize;
+    const glm::vec2 radii = 0.5f * size * imageSize;
+    if (!(radii.x > 0.f && radii.y > 0.f)) return std::nullopt;
+    return detail::EllipseCoverageShape{c.x, c.y, radii.x, radii.y, feather};
+}
+} // namespace
+#endif
+
 float LensRegion::coverage(const glm::vec2 &pixel, int width, int height) const {
+#if defined(__SSE2__)
+    if (const auto ellipse = featheredEllipse(m_shape, m_center, m_size, m_feather, width, height)) {
+        const __m128 x[1] = {_mm_set1_ps(pixel.x)}, y = _mm_set1_ps(pixel.y);
+        int unsettled = 0;
+        const __m128 settled = detail::ellipseSettled4(*ellipse, x[0], y, unsettled);
+        if (unsettled == 0) return _mm_cvtss_f32(settled);
+        __m128 ramp[1];
+        detail::ellipseRamp4(*ellipse, x, y, ramp);
+        return _mm_cvtss_f32(ramp[0]);
+    }
+#endif
     if (m_shape == Shape::Ellipse) {
         // Most pixels of an ellipse are far from its edge: the implicit equation settles them
         // without the nearest-point iteration. A point at normalised radius r < 1 is at least
@@ -185,6 +217,36 @@ float LensRegion::coverage(const glm::vec2 &pixel, int width, int height) const 
     return t * t * (3.f - 2.f * t);
 }
 
+
+void LensRegion::edgeCoverage(int y, const RowSpan &span, int width, int height, std::span<float> coverage) const {
+    const std::pair<int, int> parts[2] = {{span.x0, span.innerX0}, {span.innerX1, span.x1}};
+#if defined(__SSE2__)
+    if (const auto ellipse = featheredEllipse(m_shape, m_center, m_size, m_feather, width, height)) {
+        const __m128 centreY = _mm_set1_ps(float(y) + 0.5f);
+        detail::EllipseRampBatch batch(*ellipse, y, span.x0, coverage);
+        for (const auto &[from, to] : parts) {
+            for (int x = from; x < to; x += 4) {
+                const __m128 centreX =
+                    _mm_add_ps(_mm_cvtepi32_ps(_mm_setr_epi32(x, x + 1, x + 2, x + 3)), _mm_set1_ps(0.5f));
+                int unsettled = 0;
+                alignas(16) float settled[4];
+                _mm_store_ps(settled, detail::ellipseSettled4(*ellipse, centreX, centreY, unsettled));
+                const int lanes = std::min(4, to - x);
+                for (int i = 0; i < lanes; ++i) {
+                    coverage[std::size_t(x + i - span.x0)] = settled[i];
+                    if ((unsettled >> i) & 1) batch.add(x + i);
+                }
+            }
+        }
+        batch.flush();
+        return;
+    }
+#endif
+    for (const auto &[from, to] : parts)
+        for (int x = from; x < to; ++x)
+            coverage[std::size_t(x - span.x0)] = this->coverage({float(x) + 0.5f, float(y) + 0.5f}, width, height);
+}
+
 LensRegion::RowSpan LensRegion::rowSpan(int y, int width, int height) const {
     const PixelRect bounds = pixelBounds(width, height);
     RowSpan span;
@@ -193,13 +255,40 @@ LensRegion::RowSpan LensRegion::rowSpan(int y, int width, int height) const {
     span.x1 = bounds.x1;
     if (m_shape == Shape::Polygon) return span; // every pixel of the box goes to coverage()
 
-    // The fully covered part of the row: inside the shape shrunk by the feather, less a pixel
-    // of margin each side so that rounding never claims a pixel coverage() would not.
     const glm::vec2 imageSize{float(width), float(height)};
     const glm::vec2 c = m_center * imageSize;
     const glm::vec2 half = 0.5f * m_size * imageSize;
     const float feather = std::max(m_feather, 0.f);
     const float dy = std::abs(float(y) + 0.5f - c.y);
+    // Pixel x has its centre x + 0.5 in [from, to] for x in [firstPixel(from), endPixel(to)),
+    // clamped in floating point so that far-off shapes cannot overflow an int.
+    const auto clampToRow = [&](double x) { return std::clamp(x, double(bounds.x0), double(bounds.x1)); };
+    const auto firstPixel = [&](double from) { return int(clampToRow(std::ceil(from - 0.5))); };
+    const auto endPixel = [&](double to) { return int(clampToRow(std::floor(to - 0.5) + 1.0)); };
+
+    if (m_shape == Shape::Ellipse) {
+        // Outside the ellipse coverage is 0, so the row ends where the ellipse does, not at the
+        // bounding box (which leaves a quarter of the box to coverage()). The margin, a pixel
+        // plus 10⁻⁵ of the coordinates' size, outgrows the rounding of coverage()'s implicit
+        // equation even for huge or far-off ellipses.
+        const double marginX = 1.0 + 1e-5 * (double(half.x) + std::abs(double(c.x)));
+        const double marginY = 1.0 + 1e-5 * (double(half.y) + std::abs(double(c.y)));
+        const double nearDy = std::max(0.0, double(dy) - marginY);
+        double outerHalfWidth = -1.0;
+        if (nearDy < double(half.y)) {
+            const double v = nearDy / double(half.y);
+            outerHalfWidth = double(half.x) * std::sqrt(1.0 - v * v) + marginX;
+        }
+        if (!(outerHalfWidth > 0.0)) { // also NaN: a degenerate ellipse covers nothing
+            span.x1 = span.x0;
+            return span;
+        }
+        span.x0 = span.innerX0 = span.innerX1 = firstPixel(double(c.x) - outerHalfWidth);
+        span.x1 = std::max(span.x0, endPixel(double(c.x) + outerHalfWidth));
+    }
+
+    // The fully covered part of the row: inside the shape shrunk by the feather, less a pixel
+    // of margin each side so that rounding never claims a pixel coverage() would not.
     float innerHalfWidth = -1.f;
     if (m_shape == Shape::Rectangle) {
         if (dy + feather + 1.f <= half.y) innerHalfWidth = half.x - feather - 1.f;
@@ -211,8 +300,8 @@ LensRegion::RowSpan LensRegion::rowSpan(int y, int width, int height) const {
     }
     if (innerHalfWidth <= 0.f) return span;
     // Pixel x is inside when its centre x + 0.5 lies in [c.x − w, c.x + w].
-    const int innerX0 = std::max(bounds.x0, int(std::ceil(c.x - innerHalfWidth - 0.5f)));
-    const int innerX1 = std::min(bounds.x1, int(std::floor(c.x + innerHalfWidth - 0.5f)) + 1);
+    const int innerX0 = std::max(span.x0, firstPixel(double(c.x - innerHalfWidth)));
+    const int innerX1 = std::min(span.x1, endPixel(double(c.x + innerHalfWidth)));
     if (innerX0 < innerX1) {
         span.innerX0 = innerX0;
         span.innerX1 = innerX1;

@@ -6,14 +6,6 @@
 
 namespace mvcl {
 
-namespace {
-
-bool sameClip(const ClipVolume &a, const ClipVolume &b) {
-    return a.shape == b.shape && a.keep == b.keep && a.a == b.a && a.b == b.b && a.radius == b.radius;
-}
-
-} // namespace
-
 RayQuery intersectQueries(const RayQuery &a, const RayQuery &b) {
     RayQuery q = a;
     q.layerMask = a.layerMask & b.layerMask;
@@ -23,7 +15,7 @@ RayQuery intersectQueries(const RayQuery &a, const RayQuery &b) {
         const ClipVolume &clip = b.clips[size_t(i)];
         // An identical volume constrains nothing new: keeping it once makes the rule idempotent.
         const auto begin = q.clips.begin();
-        if (std::any_of(begin, begin + q.clipCount, [&](const ClipVolume &c) { return sameClip(c, clip); }))
+        if (std::any_of(begin, begin + q.clipCount, [&](const ClipVolume &c) { return c == clip; }))
             continue;
         if (q.clipCount >= kMaxClipVolumes)
             throw Error("lens stack", "overlapping lenses use more than " + std::to_string(kMaxClipVolumes) +

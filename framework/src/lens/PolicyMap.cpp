@@ -25,14 +25,18 @@ uint16_t PolicyMap::addPolicy(const PixelPolicy &policy) {
     return index;
 }
 
+void PolicyMap::setRun(int y, int x0, int x1, uint16_t policy) {
+    if (x0 >= x1) return;
+    const auto row = m_mixOfPixel.begin() + std::ptrdiff_t(offset(0, y));
+    std::fill(row + x0, row + x1, m_singleMixOfPolicy[policy]);
+}
+
 void PolicyMap::setPixelBlend(int x, int y, std::span<const PolicyTerm> terms) {
-    float total = 0.f;
     int kept = 0;
     uint16_t last = 0;
     for (const PolicyTerm &t : terms) {
         if (t.policy >= m_policies.size()) throw Error("policy map", "blend names a policy that does not exist");
         if (t.weight > 0.f) {
-            total += t.weight;
             ++kept;
             last = t.policy;
         }
@@ -43,8 +47,9 @@ void PolicyMap::setPixelBlend(int x, int y, std::span<const PolicyTerm> terms) {
         return;
     }
     const uint32_t first = uint32_t(m_terms.size());
-    for (const PolicyTerm &t : terms)
-        if (t.weight > 0.f) m_terms.push_back({t.policy, t.weight / total});
+    m_terms.resize(m_terms.size() + terms.size());
+    normaliseBlend(terms, std::span<PolicyTerm>(m_terms).subspan(first));
+    m_terms.resize(first + std::size_t(kept));
     m_mixOfPixel[offset(x, y)] = uint32_t(m_mixes.size());
     m_mixes.push_back({first, uint32_t(kept)});
 }

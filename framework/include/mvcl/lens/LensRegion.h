@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace mvcl {
@@ -66,6 +67,11 @@ public:
         int x0 = 0, x1 = 0, innerX0 = 0, innerX1 = 0;
     };
     RowSpan rowSpan(int y, int width, int height) const;
+    /// coverage() of the pixels that `span` = rowSpan(y, width, height) leaves to it, [x0,
+    /// innerX0) and [innerX1, x1), written to coverage[x − span.x0] (span.x1 − span.x0
+    /// entries; those of the inner part are not written). The same values bit for bit, computed
+    /// many pixels at a time.
+    void edgeCoverage(int y, const RowSpan &span, int width, int height, std::span<float> coverage) const;
 
     /// Throws mvcl::Error("lens region", problem) for non-finite values, size ≤ 0, fewer than
     /// 3 polygon points, negative feather or outline.

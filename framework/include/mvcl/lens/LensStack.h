@@ -48,8 +48,9 @@ public:
     void move(int from, int to);
     void clear() { m_lenses.clear(); }
 
-    /// The policy map of a width × height view over `base`.
-    PolicyMap compose(const RayPolicy &base, int width, int height) const;
+    /// The policy map of a width × height view over `base`, composed on at most `threads`
+    /// threads of the worker pool (0 = all cores). The map is the same for any thread count.
+    PolicyMap compose(const RayPolicy &base, int width, int height, int threads = 0) const;
     /// The policy of pixels fully covered by exactly the lenses in `lensSet` (bit i = lens i).
     PixelPolicy composeSet(const RayPolicy &base, uint64_t lensSet) const;
 

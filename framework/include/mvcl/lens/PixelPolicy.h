@@ -21,6 +21,11 @@ struct PixelPolicy {
     uint64_t lensSet = 0;
 
     bool isShaped() const { return sampleFromScreen != glm::mat3(1.f); }
+    /// True when pixels on either policy render the same radiance: the same ray policy and
+    /// ray shaping. lensSet is not compared; it only says whom the cost is charged to.
+    bool rendersLike(const PixelPolicy &other) const {
+        return ray == other.ray && sampleFromScreen == other.sampleFromScreen;
+    }
     /// Where the primary ray of the image point `pixel` (pixel coordinates, e.g. x + 0.5) of a
     /// width × height image goes through, after ray shaping.
     glm::vec2 samplePosition(const glm::vec2 &pixel, int width, int height) const {

@@ -38,15 +38,15 @@ public:
     void setPixel(int x, int y, uint16_t policy) {
         m_mixOfPixel[offset(x, y)] = m_singleMixOfPolicy[policy];
     }
+    /// Pixels [x0, x1) of row y use one policy with weight 1. Rows are independent: threads
+    /// may fill different rows (or disjoint runs) at the same time.
+    void setRun(int y, int x0, int x1, uint16_t policy);
     /// The pixel blends several policies; weights (> 0) are normalised to sum to 1. Terms with
     /// weight ≤ 0 are dropped; a single remaining term is the same as setPixel.
     void setPixelBlend(int x, int y, std::span<const PolicyTerm> terms);
 
     /// The pixel's terms (at least one).
-    std::span<const PolicyTerm> terms(int x, int y) const {
-        const Mix &mix = m_mixes[m_mixOfPixel[offset(x, y)]];
-        return {m_terms.data() + mix.first, mix.count};
-    }
+    std::span<const PolicyTerm> terms(int x, int y) const { return mixTerms(m_mixOfPixel[offset(x, y)]); }
     /// The policy with the largest weight at the pixel (the first of equal weights).
     const PixelPolicy &dominantPolicy(int x, int y) const { return m_policies[dominantPolicyIndex(x, y)]; }
     uint16_t dominantPolicyIndex(int x, int y) const;
@@ -55,7 +55,31 @@ public:
     /// Number of pixels that blend two or more policies.
     std::size_t blendedPixelCount() const;
 
+    /// Mixes by index, for loops that walk whole rows (comparing maps, rendering): the mix
+    /// index of every pixel of row y, and a mix's terms.
+    std::span<const uint32_t> rowMixIndices(int y) const {
+        return {m_mixOfPixel.data() + offset(0, y), std::size_t(m_width)};
+    }
+    std::size_t mixCount() const { return m_mixes.size(); }
+    std::span<const PolicyTerm> mixTerms(uint32_t mix) const {
+        return {m_terms.data() + m_mixes[mix].first, m_mixes[mix].count};
+    }
+
 private:
+    friend class PolicyMapBuilder; // LensStack::compose fills the mixes of many rows at once
+
+    /// How a blend is normalised: the terms with weight > 0, in order, each divided by their
+    /// sum, written to `normalised` (room for terms.size()). Returns how many were written.
+    static std::size_t normaliseBlend(std::span<const PolicyTerm> terms, std::span<PolicyTerm> normalised) {
+        float total = 0.f;
+        for (const PolicyTerm &t : terms)
+            if (t.weight > 0.f) total += t.weight;
+        std::size_t kept = 0;
+        for (const PolicyTerm &t : terms)
+            if (t.weight > 0.f) normalised[kept++] = {t.policy, t.weight / total};
+        return kept;
+    }
+
     struct Mix {
         uint32_t first;
         uint32_t count;

@@ -28,6 +28,8 @@ struct ShadingPolicy {
     bool reflections = true;  ///< trace mirror rays
     bool refractions = true;  ///< trace refracted rays
     int maxDepth = 8;         ///< bounces after the primary hit (≥ 0)
+
+    bool operator==(const ShadingPolicy &other) const = default;
 };
 
 /// Affine colour map applied after shading: c' = matrix·c + offset (linear RGB). Affine maps
@@ -36,6 +38,8 @@ struct ColorPolicy {
     glm::mat3 matrix{1.f};
     glm::vec3 offset{0.f};
     bool isIdentity() const { return matrix == glm::mat3(1.f) && offset == glm::vec3(0.f); }
+
+    bool operator==(const ColorPolicy &other) const = default;
 };
 
 struct RayPolicy {
@@ -47,6 +51,8 @@ struct RayPolicy {
 
     RayQuery &query(RayType type) { return visibility[size_t(type)]; }
     const RayQuery &query(RayType type) const { return visibility[size_t(type)]; }
+
+    bool operator==(const RayPolicy &other) const = default;
 };
 
 } // namespace mvcl

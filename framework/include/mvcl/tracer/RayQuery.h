@@ -45,6 +45,8 @@ struct ClipVolume {
     }
     /// True if a hit at p survives this volume.
     bool accepts(const glm::vec3 &p) const { return contains(p) == (keep == Keep::Inside); }
+
+    bool operator==(const ClipVolume &other) const = default;
 };
 
 inline constexpr int kMaxClipVolumes = 8;
@@ -62,6 +64,16 @@ struct RayQuery {
     bool acceptsPoint(const glm::vec3 &p) const {
         for (int i = 0; i < clipCount; ++i)
             if (!clips[i].accepts(p)) return false;
+        return true;
+    }
+
+    /// Same range, mask and clip volumes in the same order. Slots past clipCount are not
+    /// compared: the tracer never reads them, so they cannot make two queries trace apart.
+    bool operator==(const RayQuery &other) const {
+        if (tMin != other.tMin || tMax != other.tMax || layerMask != other.layerMask || clipCount != other.clipCount)
+            return false;
+        for (int i = 0; i < clipCount; ++i)
+            if (!(clips[size_t(i)] == other.clips[size_t(i)])) return false;
         return true;
     }
 };
