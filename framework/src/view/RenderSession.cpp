@@ -527,7 +527,7 @@ RenderPassStats RenderSession::Private::renderPass() {
         const Clock::time_point composeStart = Clock::now();
         LensStack stack;
         for (const std::shared_ptr<Lens> &lens : lensList) stack.add(lens);
-        PolicyMap newMap = stack.compose(base, width(), height());
+        PolicyMap newMap = stack.compose(base, width(), height(), threads());
         if (!restartAll && !cameraMoved) {
             const PixelRect area = clipTo(newBaseVersion != baseVersion
                                               ? PixelRect{0, 0, width(), height()}

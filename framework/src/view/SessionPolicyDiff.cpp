@@ -1,10 +1,11 @@
 #include "SessionPolicyDiff_p.h"
 
+#include <mvcl/lens/PolicyMapDiff.h>
+
 #include <mvcl/core/WorkerPool.h>
 
 #include <algorithm>
 #include <atomic>
-#include <cstring>
 
 namespace mvcl::detail {
 
@@ -18,13 +19,6 @@ PixelRect unite(const PixelRect &a, const PixelRect &b) {
     if (a.isEmpty()) return b;
     if (b.isEmpty()) return a;
     return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
-}
-
-/// Everything of a policy that changes radiance (not lensSet, which only serves costs).
-/// Byte comparison: equal bytes are certainly equal policies; unequal padding at worst makes
-/// a pixel re-traced that did not need it.
-bool rendersLike(const PixelPolicy &a, const PixelPolicy &b) {
-    return std::memcmp(&a.ray, &b.ray, sizeof(RayPolicy)) == 0 && a.sampleFromScreen == b.sampleFromScreen;
 }
 
 } // namespace
@@ -51,31 +45,17 @@ PixelRect changedArea(const std::vector<LensState> &before, const std::vector<Le
 
 uint64_t markChangedPixels(const PolicyMap &before, const PolicyMap &after, const PixelRect &area,
                            std::vector<uint8_t> &changed, int threads) {
-    // Policies are matched once per map pair, not per pixel: each policy of either map gets
-    // the index of the first policy of `before` that renders like it (kNone if there is none).
-    constexpr uint32_t kNone = 0xffffffffu;
-    auto firstLike = [&](const PixelPolicy &p) {
-        for (size_t i = 0; i < before.policies().size(); ++i)
-            if (rendersLike(p, before.policies()[i])) return uint32_t(i);
-        return kNone;
-    };
-    std::vector<uint32_t> canonicalBefore, canonicalAfter;
-    for (const PixelPolicy &p : before.policies()) canonicalBefore.push_back(firstLike(p));
-    for (const PixelPolicy &p : after.policies()) canonicalAfter.push_back(firstLike(p));
+    // markChangedPixels only sets marks: the area is cleared first, as the mask is reused.
     const int width = after.width();
+    changed.resize(size_t(width) * size_t(after.height()), 0);
+    for (int y = std::max(area.y0, 0); y < area.y1; ++y)
+        std::fill_n(changed.data() + size_t(y) * size_t(width) + size_t(area.x0), size_t(area.x1 - area.x0), uint8_t(0));
+    mvcl::markChangedPixels(before, after, area, changed, threads);
     std::atomic<uint64_t> total{0};
     parallelFor(size_t(std::max(area.y1 - area.y0, 0)), threads, [&](size_t row) {
-        const int y = area.y0 + int(row);
+        const uint8_t *line = changed.data() + size_t(area.y0 + int(row)) * size_t(width);
         uint64_t count = 0;
-        for (int x = area.x0; x < area.x1; ++x) {
-            const std::span<const PolicyTerm> was = before.terms(x, y), is = after.terms(x, y);
-            bool differs = was.size() != is.size();
-            for (size_t t = 0; !differs && t < is.size(); ++t)
-                differs = canonicalAfter[is[t].policy] != canonicalBefore[was[t].policy] ||
-                          is[t].weight != was[t].weight;
-            changed[size_t(y) * size_t(width) + size_t(x)] = differs;
-            count += differs;
-        }
+        for (int x = area.x0; x < area.x1; ++x) count += line[x];
         total += count;
     });
     return total.load();

@@ -28,8 +28,8 @@ PixelRect changedArea(const std::vector<LensState> &before, const std::vector<Le
                       int height);
 
 /// Sets changed[y·width + x] to 1 for each pixel of `area` whose terms render differently in
-/// `after` than in `before` (a term's policy, its weight or the number of terms), to 0 for the
-/// others of `area`; returns how many changed. Pixels outside `area` are left as they are.
+/// `after` than in `before` (mvcl::markChangedPixels) and to 0 for the others of `area`;
+/// returns how many changed. Pixels outside `area` are left as they are.
 uint64_t markChangedPixels(const PolicyMap &before, const PolicyMap &after, const PixelRect &area,
                            std::vector<uint8_t> &changed, int threads);
 
