@@ -12,6 +12,8 @@ packages=(
   g++ cmake ninja-build pkg-config
   libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenimageio-dev libtbb-dev
   libcli11-dev libgtest-dev
+  libglfw3-dev libimgui-dev libepoxy-dev   # mvcl-viewer
+  xvfb xauth libgl1-mesa-dri              # the viewer's end-to-end test: a real window, Mesa llvmpipe
   libembree-dev libbenchmark-dev   # optional peers for mvcl-bench
 )
 

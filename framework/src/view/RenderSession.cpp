@@ -109,6 +109,9 @@ struct RenderSession::Private {
     std::vector<const LensSnapshot *> appliedSnapshots;
     std::atomic<bool> cancel{false};
     std::atomic<bool> needsSamples{false};
+    /// A pass is between taking the edits and publishing its pixels: hasWork() stays true, so
+    /// "no work" means the display shows everything.
+    std::atomic<bool> passRunning{false};
 
     // --- The accumulated image: the thread that runs passes only. ---
     bool initialised = false;
@@ -223,7 +226,7 @@ bool RenderSession::Private::hasWorkLocked() const {
     if (stagedLenses.size() != appliedSnapshots.size()) return true;
     for (size_t i = 0; i < stagedLenses.size(); ++i)
         if (stagedLenses[i]->snapshot().get() != appliedSnapshots[i]) return true;
-    return needsSamples.load(std::memory_order_relaxed);
+    return needsSamples.load() || passRunning.load();
 }
 
 void RenderSession::Private::resize() {
@@ -504,6 +507,7 @@ RenderPassStats RenderSession::Private::renderPass() {
         newSettings = stagedSettings;
         appliedEdits = editCount;
         cancel = false;
+        passRunning = true;
     }
     std::vector<detail::LensState> newLenses;
     for (const std::shared_ptr<Lens> &lens : lensList) newLenses.push_back({lens, lens->snapshot()});
@@ -572,10 +576,13 @@ RenderPassStats RenderSession::Private::renderPass() {
     if (!lenses.empty()) stats.perLens = lensCosts(stats.perPolicy);
     stats.milliseconds = millisecondsBetween(passStart, Clock::now());
     const ConvergenceStats reached = summarise();
-    std::lock_guard lock(statsMutex);
-    last = stats;
-    convergence = reached;
-    ++passes;
+    {
+        std::lock_guard lock(statsMutex);
+        last = stats;
+        convergence = reached;
+        ++passes;
+    }
+    passRunning = false;
     return stats;
 }
 

@@ -1,0 +1,136 @@
+#pragma once
+// The viewer's state between frames: the controller (scene, camera, lenses, history, render
+// session), the image texture, the panels' bits of UI state and the script being replayed.
+// main.cpp calls update(), drawUi() and frameDrawn() once per frame.
+
+#include "ImageTexture.h"
+#include "ViewerOptions.h"
+#include "ViewerScript.h"
+
+#include <mvcl/controller/Controller.h>
+#include <mvcl/lens/LensRegistry.h>
+#include <mvcl/lens/PolicyMap.h>
+#include <mvcl/view/DepthHistogram.h>
+#include <mvcl/view/Framebuffer.h>
+#include <mvcl/view/Picking.h>
+
+#include <chrono>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+struct GLFWwindow;
+
+namespace mvcl::viewer {
+
+class Viewer {
+public:
+    Viewer(GLFWwindow *window, const ViewerOptions &options);
+    ~Viewer();
+    Viewer(const Viewer &) = delete;
+    Viewer &operator=(const Viewer &) = delete;
+
+    /// Before the UI frame: replays the script, takes the render session's new pixels.
+    void update();
+    /// Inside the ImGui frame: the image, lens overlays, panels; forwards input to the controller.
+    void drawUi();
+    /// After the frame is drawn, before it is shown: window screenshots, frame timing.
+    void frameDrawn();
+
+    bool wantsToQuit() const { return m_quit; }
+    int exitCode() const { return m_exitCode; }
+
+private:
+    using Clock = std::chrono::steady_clock;
+
+    // Viewer.cpp
+    void layout();
+    void takeImage();
+    void forwardInput();
+    void handleViewerKeys();
+    void handle(const InputEvent &event);
+    void report(const std::string &message);
+    void writeScreenshot(const std::string &file);
+    void saveSession(const std::string &file);
+    void openFile(const std::string &file);
+    glm::vec2 pixelFromNormalized(const glm::vec2 &p) const;
+    // ViewerOverlays.cpp
+    void drawImage();
+    void drawLensOverlays();
+    void drawHelpOverlay();
+    void drawMessages();
+    // ViewerPanels.cpp
+    void drawPanels();
+    void drawLensStackPanel();
+    void drawLensPanel();
+    void drawLayersPanel();
+    void drawStatsPanel();
+    void drawPickPanel();
+    void drawHistogramPanel();
+    /// Joins the histogram worker: before anything replaces the scene it traces.
+    void stopHistogramWorker();
+    const PolicyMap &pickingMap();
+    void drawOpenPopup();
+    template <class Edit> void edit(Edit &&edit);
+    // ViewerScripting.cpp
+    void runScript();
+    bool runCommand(const ScriptCommand &command);
+
+    GLFWwindow *m_window;
+    ViewerOptions m_options;
+    LensRegistry m_registry;
+    std::unique_ptr<Controller> m_controller;
+    ImageTexture m_texture;
+    Framebuffer m_image;          ///< the last copy of the session's display image
+    bool m_imageCurrent = false;  ///< m_image holds everything the session has published
+
+    // Layout in screen units (ImGui's) and framebuffer pixels.
+    float m_contentScale = 1.f;
+    glm::vec2 m_framebufferScale{1.f};
+    glm::vec2 m_viewScreenSize{0.f};
+    float m_panelWidth = 0.f;
+
+    // UI state.
+    bool m_showHelp = false;
+    bool m_editStepOpen = false;      ///< a panel widget is being dragged: one undo step
+    bool m_openPopupRequested = false;
+    std::string m_openPath;
+    std::deque<std::string> m_messages;
+    glm::vec2 m_pointer{-1.f};        ///< framebuffer pixels; negative when outside the view
+    int m_screenshotCount = 0;
+    std::string m_pendingWindowShot;
+
+    // Picking: a policy map of our own (the session's belongs to its render thread), composed
+    // again when a lens snapshot or the view size changes.
+    std::optional<PolicyMap> m_pickMap;
+    std::vector<const void *> m_pickSnapshots;
+    uint32_t m_pickLayers = 0;
+
+    // Depth histogram of the selected layer lens, computed off the UI thread.
+    std::jthread m_histogramWorker;
+    std::mutex m_histogramMutex;
+    std::optional<DepthHistogram> m_histogram; ///< under m_histogramMutex
+    int m_histogramLens = -1;
+    bool m_histogramBusy = false;             ///< under m_histogramMutex
+
+    // Frame timing.
+    Clock::time_point m_frameStart = Clock::now();
+    double m_lastFrameMs = 0.0;
+    std::deque<double> m_frameTimes;
+
+    // Script replay.
+    std::optional<ViewerScript> m_script;
+    int m_waitFrames = 0;
+    int m_dragStep = -1;
+    std::string m_benchName;
+    std::vector<double> m_benchFrames;
+    uint64_t m_benchImageUpdates = 0;
+    bool m_quit = false;
+    int m_exitCode = 0;
+};
+
+} // namespace mvcl::viewer

@@ -1,0 +1,62 @@
+#include "ViewerOptions.h"
+
+#include <mvcl/core/Error.h>
+#include <mvcl/model/LayerRules.h>
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <map>
+
+namespace mvcl::viewer {
+
+int parseViewerOptions(int argc, char **argv, ViewerOptions &options) {
+    CLI::App app{"mvcl-viewer: open a layered model, stack and drag lenses over it, look inside in real time.\n"
+                 "Press F1 in the window for every mouse and key binding.",
+                 "mvcl-viewer"};
+    std::string size, layerRule;
+    app.add_option("scene", options.request.source, "model.gltf | model.glb | builtin:NAME (default: the session's scene)");
+    app.add_option("--lenses,--session", options.request.sessionFile, "session (lens-stack) file to open");
+    app.add_option("--lens", options.request.lensSpecs, "one more lens on top: TYPE:key=value,... (repeatable)");
+    app.add_option("--layer-rule", layerRule, "inline layer rules \"glob=layer;...\" (win over the session's)");
+    app.add_option("--size", size, "window size WxH in screen units (default 1600x900)");
+    app.add_option("--threads", options.threads, "render threads, 0 = all cores")->check(CLI::Range(0, 1024));
+    const std::map<std::string, SamplingMode> modes = {
+        {"fixed", SamplingMode::Fixed}, {"progressive", SamplingMode::Progressive}, {"adaptive", SamplingMode::Adaptive}};
+    app.add_option("--sampling", options.sampling, "fixed | progressive | adaptive (default adaptive)")
+        ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+    app.add_option("--spp", options.samplesPerPixel, "samples per pixel (fixed), the minimum (adaptive); default 4")
+        ->check(CLI::Range(1, 65536));
+    app.add_option("--max-spp", options.maxSamplesPerPixel, "most samples per pixel (progressive, adaptive); default 256")
+        ->check(CLI::Range(1, 1 << 20));
+    app.add_option("--target-error", options.targetError, "adaptive: estimated relative error to reach; default 0.005")
+        ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--script", options.script, "replay events and commands from FILE (see docs/viewer.md)")
+        ->check(CLI::ExistingFile);
+    app.add_option("--recovery", options.recovery, "where the recovery copy of the session goes");
+    try {
+        app.parse(argc, argv);
+        if (!size.empty()) {
+            int w = 0, h = 0;
+            char x = 0;
+            if (std::sscanf(size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 64 || h < 64 || w > 16384 ||
+                h > 16384)
+                throw CLI::ValidationError("--size", "expects WxH (64..16384 each), got '" + size + "'");
+            options.width = w;
+            options.height = h;
+        }
+        if (!layerRule.empty()) options.request.loadOptions.layerRules = LayerRules::fromString(layerRule);
+    } catch (const CLI::CallForHelp &) {
+        std::fputs(app.help().c_str(), stdout);
+        return 0;
+    } catch (const CLI::ParseError &e) {
+        std::fprintf(stderr, "mvcl-viewer: command line: %s (see mvcl-viewer --help)\n", e.what());
+        return 2;
+    } catch (const Error &e) {
+        std::fprintf(stderr, "mvcl-viewer: command line: --layer-rule: %s\n", e.problem().c_str());
+        return 2;
+    }
+    return -1;
+}
+
+} // namespace mvcl::viewer

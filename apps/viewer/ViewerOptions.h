@@ -1,0 +1,29 @@
+#pragma once
+// mvcl-viewer's command line.
+
+#include <mvcl/controller/ViewRequest.h>
+#include <mvcl/view/RenderSettings.h>
+
+#include <filesystem>
+#include <string>
+
+namespace mvcl::viewer {
+
+struct ViewerOptions {
+    ViewRequest request;               ///< scene, session file, extra lenses, camera overrides
+    int width = 1600;                  ///< window size in screen units
+    int height = 900;
+    int threads = 0;                   ///< render threads, 0 = all cores
+    SamplingMode sampling = SamplingMode::Adaptive;
+    int samplesPerPixel = 4;           ///< fixed: per pixel; adaptive: the minimum
+    int maxSamplesPerPixel = 256;      ///< progressive and adaptive
+    float targetError = 0.005f;        ///< adaptive
+    std::filesystem::path script;      ///< --script: events and commands to replay
+    std::filesystem::path recovery;    ///< --recovery: where the recovery copy goes
+};
+
+/// Parses argv with CLI11. Returns -1 to go on, or the exit code to end with at once (0 after
+/// --help, 2 for a usage error, printed as one line "mvcl-viewer: command line: ...").
+int parseViewerOptions(int argc, char **argv, ViewerOptions &options);
+
+} // namespace mvcl::viewer

@@ -1,0 +1,134 @@
+// What the viewer draws over the window: the rendered image, each lens's outline (the selected
+// one brighter, with its handles), the help overlay and the message bar.
+
+#include "Viewer.h"
+
+#include <mvcl/lens/LensStack.h>
+
+#include <imgui.h>
+
+#include <cmath>
+
+namespace mvcl::viewer {
+
+namespace {
+
+ImU32 colorOf(const glm::vec3 &linear, float alpha) {
+    auto channel = [](float v) { return std::pow(std::clamp(v, 0.f, 1.f), 1.f / 2.2f); };
+    return ImGui::GetColorU32(ImVec4(channel(linear.x), channel(linear.y), channel(linear.z), alpha));
+}
+
+/// Every binding, for the help overlay (F1); the controller's own are listed in Controller.h.
+const char *const kBindings[][2] = {
+    {"left drag on a lens", "move it (selects it)"},
+    {"left drag on a handle", "resize the selected lens (corners, edges, polygon vertices)"},
+    {"left drag elsewhere", "orbit about the target"},
+    {"middle drag, Shift + left drag", "pan"},
+    {"scroll", "zoom toward the point under the pointer"},
+    {"F, Home", "frame everything"},
+    {"1 ... 6", "front, back, left, right, top, bottom view"},
+    {"keypad 1 / 3 / 7", "front / right / top (Ctrl: back / left / bottom)"},
+    {"PageUp, PageDown", "raise, lower the selected lens"},
+    {"Delete, Backspace", "delete the selected lens"},
+    {"Ctrl+D", "duplicate the selected lens"},
+    {"E", "enable or disable the selected lens"},
+    {"Escape", "cancel the drag, else deselect"},
+    {"Ctrl+Z / Ctrl+Shift+Z, Ctrl+Y", "undo / redo"},
+    {"Ctrl+S", "save the session (session.json unless one is open)"},
+    {"Ctrl+O", "open a model or a session file"},
+    {"drop a .gltf/.glb or .json file", "open the model / the session"},
+    {"F12", "screenshot of the rendered image (out/mvcl-viewer-N.png)"},
+    {"F1", "this help"},
+    {"Ctrl+Q", "quit"},
+};
+
+} // namespace
+
+void Viewer::drawImage() {
+    ImDrawList *draw = ImGui::GetBackgroundDrawList();
+    if (m_texture.width() > 0)
+        draw->AddImage(ImTextureID(intptr_t(m_texture.glName())), ImVec2(0.f, 0.f),
+                       ImVec2(m_viewScreenSize.x, m_viewScreenSize.y));
+}
+
+void Viewer::drawLensOverlays() {
+    ImDrawList *draw = ImGui::GetBackgroundDrawList();
+    const LensStack &stack = m_controller->lensStack();
+    const float thickness = 1.5f * m_contentScale;
+    for (int i = 0; i < stack.size(); ++i) {
+        const Lens &lens = *stack.lens(i);
+        const LensRegion &region = lens.region();
+        const bool selected = i == m_controller->selectedLens();
+        const ImU32 color = lens.isEnabled() ? colorOf(selected ? glm::vec3(1.f, 0.85f, 0.2f) : glm::vec3(0.9f), selected ? 1.f : 0.6f)
+                                             : colorOf(glm::vec3(0.5f), 0.5f);
+        const glm::vec2 c = pixelFromNormalized(region.center());
+        const glm::vec2 half = 0.5f * pixelFromNormalized(region.size());
+        switch (region.shape()) {
+        case LensRegion::Shape::Rectangle:
+            draw->AddRect(ImVec2(c.x - half.x, c.y - half.y), ImVec2(c.x + half.x, c.y + half.y), color, 0.f, 0, thickness);
+            break;
+        case LensRegion::Shape::Ellipse: {
+            constexpr int kSegments = 96;
+            ImVec2 points[kSegments];
+            for (int k = 0; k < kSegments; ++k) {
+                const float a = 6.2831853f * float(k) / float(kSegments);
+                points[k] = ImVec2(c.x + half.x * std::cos(a), c.y + half.y * std::sin(a));
+            }
+            draw->AddPolyline(points, kSegments, color, ImDrawFlags_Closed, thickness);
+            break;
+        }
+        case LensRegion::Shape::Polygon: {
+            std::vector<ImVec2> points;
+            for (const glm::vec2 &p : region.points()) {
+                const glm::vec2 s = pixelFromNormalized(p);
+                points.emplace_back(s.x, s.y);
+            }
+            if (points.size() >= 2) draw->AddPolyline(points.data(), int(points.size()), color, ImDrawFlags_Closed, thickness);
+            break;
+        }
+        }
+        const std::string label = lens.label().empty() ? lens.typeName() : lens.label();
+        draw->AddText(ImVec2(c.x - half.x + 4.f, c.y - half.y + 2.f), color, label.c_str());
+        if (!selected) continue;
+        for (const LensHandle &handle : m_controller->lensHandles(i)) {
+            const glm::vec2 h = pixelFromNormalized(handle.position);
+            const float r = 4.f * m_contentScale;
+            draw->AddRectFilled(ImVec2(h.x - r, h.y - r), ImVec2(h.x + r, h.y + r), color);
+        }
+    }
+}
+
+void Viewer::drawHelpOverlay() {
+    if (!m_showHelp) return;
+    ImGui::SetNextWindowPos(ImVec2(m_viewScreenSize.x * 0.5f, m_viewScreenSize.y * 0.5f), ImGuiCond_Always,
+                            ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowBgAlpha(0.9f);
+    if (ImGui::Begin("Help (F1)", &m_showHelp, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse)) {
+        if (ImGui::BeginTable("bindings", 2, ImGuiTableFlags_RowBg)) {
+            for (const auto &binding : kBindings) {
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(binding[0]);
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(binding[1]);
+            }
+            ImGui::EndTable();
+        }
+        ImGui::TextDisabled("Panels on the right: lens stack, selected lens, layers, stats, what is under the pointer.");
+    }
+    ImGui::End();
+}
+
+void Viewer::drawMessages() {
+    if (m_messages.empty()) return;
+    const float lineHeight = ImGui::GetTextLineHeightWithSpacing();
+    ImDrawList *draw = ImGui::GetForegroundDrawList();
+    float y = m_viewScreenSize.y - lineHeight * float(m_messages.size()) - 6.f;
+    for (const std::string &message : m_messages) {
+        draw->AddRectFilled(ImVec2(4.f, y - 1.f), ImVec2(8.f + ImGui::CalcTextSize(message.c_str()).x, y + lineHeight - 2.f),
+                            IM_COL32(0, 0, 0, 170));
+        draw->AddText(ImVec2(6.f, y), IM_COL32(255, 230, 160, 255), message.c_str());
+        y += lineHeight;
+    }
+}
+
+} // namespace mvcl::viewer

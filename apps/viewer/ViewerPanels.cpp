@@ -1,0 +1,320 @@
+// The side panel: lens stack, the selected lens (region and generated property controls),
+// layers, stats, and what lies under the pointer. Every edit goes through the controller, so it
+// is one undo step and reaches the render session and the recovery copy.
+
+#include "PropertyEditor.h"
+#include "Viewer.h"
+
+#include <mvcl/lens/LensStack.h>
+#include <mvcl/model/Scene.h>
+#include <mvcl/tracer/Tracer.h>
+#include <mvcl/view/RenderSession.h>
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cstdio>
+#include <numeric>
+
+namespace mvcl::viewer {
+
+template <class Edit>
+void Viewer::edit(Edit &&change) {
+    // A widget held down (a slider being dragged) is one undo step from press to release.
+    if (!m_editStepOpen && ImGui::IsAnyItemActive()) {
+        m_controller->beginEditStep();
+        m_editStepOpen = true;
+    }
+    try {
+        change();
+    } catch (const Error &e) {
+        report(e.what());
+    }
+}
+
+void Viewer::drawUi() {
+    forwardInput();
+    drawImage();
+    drawLensOverlays();
+    drawPanels();
+    drawHelpOverlay();
+    drawOpenPopup();
+    drawMessages();
+    if (m_editStepOpen && !ImGui::IsAnyItemActive()) {
+        m_controller->endEditStep();
+        m_editStepOpen = false;
+    }
+}
+
+void Viewer::drawPanels() {
+    ImGui::SetNextWindowPos(ImVec2(m_viewScreenSize.x, 0.f), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(m_panelWidth, m_viewScreenSize.y), ImGuiCond_Always);
+    ImGui::Begin("mvcl", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::TextDisabled("%s  (F1: help)", m_controller->sceneSource().c_str());
+    if (ImGui::CollapsingHeader("Lenses", ImGuiTreeNodeFlags_DefaultOpen)) drawLensStackPanel();
+    if (ImGui::CollapsingHeader("Selected lens", ImGuiTreeNodeFlags_DefaultOpen)) drawLensPanel();
+    if (ImGui::CollapsingHeader("Layers", ImGuiTreeNodeFlags_DefaultOpen)) drawLayersPanel();
+    if (ImGui::CollapsingHeader("Under the pointer", ImGuiTreeNodeFlags_DefaultOpen)) drawPickPanel();
+    if (ImGui::CollapsingHeader("Depth histogram")) drawHistogramPanel();
+    if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel();
+    ImGui::End();
+}
+
+void Viewer::drawLensStackPanel() {
+    const LensStack &stack = m_controller->lensStack();
+    // Top of the stack first, as the lenses lie over the image.
+    for (int i = stack.size() - 1; i >= 0; --i) {
+        const Lens &lens = *stack.lens(i);
+        ImGui::PushID(i);
+        bool enabled = lens.isEnabled();
+        if (ImGui::Checkbox("##enabled", &enabled)) edit([&] { m_controller->setLensEnabled(i, enabled); });
+        ImGui::SameLine();
+        const std::string name = std::to_string(i) + "  " + lens.typeName() + (lens.label().empty() ? "" : "  '" + lens.label() + "'");
+        if (ImGui::Selectable(name.c_str(), m_controller->selectedLens() == i, 0, ImVec2(ImGui::GetContentRegionAvail().x - 90.f * m_contentScale, 0.f)))
+            m_controller->setSelectedLens(i);
+        ImGui::SameLine();
+        if (ImGui::ArrowButton("up", ImGuiDir_Up) && i + 1 < stack.size()) edit([&] { m_controller->raiseLens(i); });
+        ImGui::SameLine();
+        if (ImGui::ArrowButton("down", ImGuiDir_Down) && i > 0) edit([&] { m_controller->lowerLens(i); });
+        ImGui::SameLine();
+        if (ImGui::SmallButton("x")) edit([&] { m_controller->removeLens(i); });
+        ImGui::PopID();
+    }
+    if (stack.isEmpty()) ImGui::TextDisabled("no lenses yet");
+    if (ImGui::BeginCombo("##add", "add a lens ...")) {
+        for (const std::string &type : m_controller->lensRegistry().lensTypes())
+            if (ImGui::Selectable(type.c_str())) edit([&] { m_controller->addLens(type, {0.5f, 0.5f}); });
+        ImGui::EndCombo();
+    }
+    const int selected = m_controller->selectedLens();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(selected < 0);
+    if (ImGui::Button("duplicate")) edit([&] { m_controller->duplicateLens(selected); });
+    ImGui::EndDisabled();
+    ImGui::BeginDisabled(!m_controller->canUndo());
+    if (ImGui::Button("undo")) edit([&] { m_controller->undo(); });
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!m_controller->canRedo());
+    if (ImGui::Button("redo")) edit([&] { m_controller->redo(); });
+    ImGui::EndDisabled();
+}
+
+void Viewer::drawLensPanel() {
+    const int index = m_controller->selectedLens();
+    if (index < 0 || index >= m_controller->lensCount()) {
+        ImGui::TextDisabled("click a lens to select it");
+        return;
+    }
+    const Lens &lens = *m_controller->lensStack().lens(index);
+    ImGui::Text("%s", lens.typeName().c_str());
+    ImGui::TextWrapped("%s", lens.info().description.c_str());
+
+    // The region: shape, centre and size in normalised image coordinates, feather in pixels.
+    LensRegion region = lens.region();
+    bool regionChanged = false;
+    if (region.shape() != LensRegion::Shape::Polygon) {
+        glm::vec2 center = region.center(), size = region.size();
+        if (ImGui::DragFloat2("center", &center.x, 0.002f, -1.f, 2.f)) {
+            region.setCenter(center);
+            regionChanged = true;
+        }
+        if (ImGui::DragFloat2("size", &size.x, 0.002f, 0.01f, 2.f)) {
+            region.setSize(glm::max(size, glm::vec2(0.01f)));
+            regionChanged = true;
+        }
+    }
+    float feather = region.feather();
+    if (ImGui::SliderFloat("feather", &feather, 0.f, 40.f, "%.1f px")) {
+        region.setFeather(feather);
+        regionChanged = true;
+    }
+    float outline = region.outlineWidth();
+    if (ImGui::SliderFloat("outline", &outline, 0.f, 8.f, "%.1f px")) {
+        region.setOutlineWidth(outline);
+        regionChanged = true;
+    }
+    if (regionChanged) edit([&] { m_controller->setLensRegion(index, region); });
+
+    // The declared properties: one generated control each, no per-lens code.
+    const LayerTable &layers = m_controller->scene().layers;
+    for (const PropertyDecl &decl : lens.properties()) {
+        PropertyValue value = lens.property(decl.name);
+        ImGui::PushID(decl.name.c_str());
+        if (editProperty(decl, value, layers))
+            edit([&] { m_controller->setLensProperty(index, decl.name, value.toString()); });
+        ImGui::PopID();
+    }
+}
+
+void Viewer::drawLayersPanel() {
+    for (const Layer &layer : m_controller->scene().layers.layers()) {
+        ImGui::PushID(layer.id);
+        const glm::vec3 c = layer.color;
+        ImGui::ColorButton("##colour", ImVec4(c.x, c.y, c.z, 1.f), ImGuiColorEditFlags_NoTooltip);
+        ImGui::SameLine();
+        bool visible = m_controller->layerVisibility(layer.id) == LayerVisibility::Visible;
+        const std::string label = std::to_string(layer.id) + "  " + layer.name;
+        if (ImGui::Checkbox(label.c_str(), &visible))
+            edit([&] { m_controller->setLayerVisibility(layer.id, visible ? LayerVisibility::Visible : LayerVisibility::Hidden); });
+        ImGui::PopID();
+    }
+}
+
+const PolicyMap &Viewer::pickingMap() {
+    const LensStack &stack = m_controller->lensStack();
+    std::vector<const void *> snapshots;
+    for (const auto &lens : stack.lenses()) snapshots.push_back(lens->snapshot().get());
+    const glm::ivec2 size = m_controller->viewSize();
+    if (!m_pickMap || m_pickMap->width() != size.x || m_pickMap->height() != size.y || snapshots != m_pickSnapshots ||
+        m_pickLayers != m_controller->visibleLayers()) {
+        m_pickMap = stack.compose(m_controller->basePolicy(), size.x, size.y);
+        m_pickSnapshots = std::move(snapshots);
+        m_pickLayers = m_controller->visibleLayers();
+    }
+    return *m_pickMap;
+}
+
+void Viewer::drawPickPanel() {
+    if (m_pointer.x < 0.f) {
+        ImGui::TextDisabled("move the pointer over the image");
+        return;
+    }
+    // The ray of the pixel under its composed policy: what a lens hides cannot be picked.
+    const PickResult p = pick(m_controller->tracer(), m_controller->camera(), pickingMap(), int(m_pointer.x), int(m_pointer.y));
+    ImGui::Text("pixel %d, %d", int(m_pointer.x), int(m_pointer.y));
+    if (!p.hit) {
+        ImGui::TextDisabled("nothing: the background");
+        return;
+    }
+    ImGui::Text("layer %d  %s", p.layer, p.layerName.c_str());
+    ImGui::Text("object %s", p.objectName.c_str());
+    if (!p.nodeName.empty() || !p.meshName.empty())
+        ImGui::Text("node %s, mesh %s", p.nodeName.c_str(), p.meshName.c_str());
+    ImGui::Text("material %u  %s", p.material, p.materialName.c_str());
+    ImGui::Text("distance %.6g", double(p.distance));
+    ImGui::Text("world %.6g, %.6g, %.6g", p.worldPosition.x, p.worldPosition.y, p.worldPosition.z);
+}
+
+void Viewer::stopHistogramWorker() {
+    if (m_histogramWorker.joinable()) {
+        m_histogramWorker.request_stop();
+        m_histogramWorker.join();
+    }
+    std::lock_guard lock(m_histogramMutex);
+    m_histogram.reset();
+    m_histogramBusy = false;
+}
+
+void Viewer::drawHistogramPanel() {
+    const int index = m_controller->selectedLens();
+    if (index < 0 || m_controller->lensStack().lens(index)->typeName() != "layer") {
+        ImGui::TextDisabled("select a layer lens");
+        return;
+    }
+    bool busy;
+    std::optional<DepthHistogram> histogram;
+    {
+        std::lock_guard lock(m_histogramMutex);
+        busy = m_histogramBusy;
+        if (m_histogramLens == index) histogram = m_histogram;
+    }
+    ImGui::BeginDisabled(busy);
+    if (ImGui::Button(busy ? "computing ..." : "depth histogram under the lens")) {
+        const glm::ivec2 size = m_controller->viewSize();
+        // The request is built here (it reads the lenses); the rays are traced on a worker.
+        DepthHistogramRequest request = depthHistogramRequest(m_controller->lensStack(), index, m_controller->basePolicy(),
+                                                              m_controller->camera(), size.x, size.y);
+        const Tracer &tracer = m_controller->tracer();
+        stopHistogramWorker();
+        {
+            std::lock_guard lock(m_histogramMutex);
+            m_histogramLens = index;
+            m_histogramBusy = true;
+        }
+        m_histogramWorker = std::jthread([this, &tracer, request](std::stop_token stop) {
+            DepthHistogram result = computeDepthHistogram(tracer, request, stop);
+            std::lock_guard lock(m_histogramMutex);
+            m_histogram = std::move(result);
+            m_histogramBusy = false;
+        });
+    }
+    ImGui::EndDisabled();
+    if (!histogram) return;
+    if (histogram->isEmpty()) {
+        ImGui::TextDisabled("no surface under the lens");
+        return;
+    }
+    std::vector<float> counts(histogram->counts.begin(), histogram->counts.end());
+    ImGui::PlotHistogram("##depths", counts.data(), int(counts.size()), 0, nullptr, 0.f, FLT_MAX,
+                         ImVec2(ImGui::GetContentRegionAvail().x, 70.f * m_contentScale));
+    ImGui::Text("%.4g .. %.4g, %u rays, %.1f ms", double(histogram->tNear), double(histogram->tFar),
+                histogram->raysSampled, histogram->milliseconds);
+    ImGui::TextDisabled("click a suggested d to set it:");
+    for (const DepthSuggestion &s : histogram->suggestions) {
+        char label[96];
+        std::snprintf(label, sizeof label, "d = %.4g  (%u rays, layer %d to %d)", double(s.distance), s.raysSeparated,
+                      s.layerBefore, s.layerAfter);
+        if (ImGui::SmallButton(label))
+            edit([&] { m_controller->setLensProperty(index, "distance", std::to_string(s.distance)); });
+    }
+}
+
+void Viewer::drawStatsPanel() {
+    RenderSession &session = m_controller->renderSession();
+    const RenderPassStats pass = session.lastPass();
+    const ConvergenceStats c = session.convergence();
+    std::vector<double> sorted(m_frameTimes.begin(), m_frameTimes.end());
+    std::sort(sorted.begin(), sorted.end());
+    ImGui::Text("UI frame %.1f ms (median %.1f, worst %.1f of the last %zu)", m_lastFrameMs,
+                sorted.empty() ? 0.0 : sorted[sorted.size() / 2], sorted.empty() ? 0.0 : sorted.back(), sorted.size());
+    ImGui::Text("view %d x %d px, %d lenses", m_controller->viewSize().x, m_controller->viewSize().y, m_controller->lensCount());
+    ImGui::Text("pass %s%s: %.1f ms, %llu px, %.2f Mrays/s", passKindName(pass.kind),
+                pass.wasCancelled ? " (cancelled)" : "", pass.milliseconds, (unsigned long long)pass.pixelsTraced,
+                pass.traceMilliseconds > 0 ? double(pass.rays.total()) / (pass.traceMilliseconds * 1e3) : 0.0);
+    if (pass.kind == PassKind::Preview) ImGui::Text("preview at 1/%d resolution", pass.resolutionDivider);
+    ImGui::Text("samples %d min, %.1f mean, %d max per pixel", c.minSamples, c.meanSamples, c.maxSamples);
+    ImGui::Text("estimated error %.4f mean, %.4f max%s", c.meanError, c.maxError, c.isConverged ? "  (converged)" : "");
+    for (const LensCost &cost : pass.perLens)
+        ImGui::Text("  lens %d '%s': %llu px, %.1f ms", cost.index, cost.label.c_str(), (unsigned long long)cost.pixels,
+                    cost.milliseconds);
+
+    RenderSettings settings = m_controller->renderSettings();
+    int mode = int(settings.sampling);
+    const char *modes[] = {"fixed", "progressive", "adaptive"};
+    bool changed = ImGui::Combo("sampling", &mode, modes, 3);
+    changed |= ImGui::SliderInt("max spp", &settings.maxSamplesPerPixel, 1, 4096, "%d", ImGuiSliderFlags_Logarithmic);
+    changed |= ImGui::SliderFloat("target error", &settings.targetError, 0.f, 0.1f, "%.4f", ImGuiSliderFlags_Logarithmic);
+    if (changed) {
+        settings.sampling = SamplingMode(mode);
+        try {
+            m_controller->setRenderSettings(settings);
+        } catch (const Error &e) {
+            report(e.what());
+        }
+    }
+}
+
+void Viewer::drawOpenPopup() {
+    if (m_openPopupRequested) {
+        ImGui::OpenPopup("Open");
+        m_openPopupRequested = false;
+    }
+    if (!ImGui::BeginPopupModal("Open", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+    ImGui::TextUnformatted("A model (.gltf, .glb, builtin:NAME) or a session (.json):");
+    char path[1024];
+    std::snprintf(path, sizeof path, "%s", m_openPath.c_str());
+    if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+    const bool entered = ImGui::InputText("##path", path, sizeof path, ImGuiInputTextFlags_EnterReturnsTrue);
+    m_openPath = path;
+    if (entered || ImGui::Button("open")) {
+        openFile(m_openPath);
+        ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("cancel")) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+}
+
+} // namespace mvcl::viewer

@@ -1,0 +1,169 @@
+// Replaying a --script file: pointer and key events go to the controller exactly as the
+// window's would; commands wait for the render session, write images and sessions, and time
+// UI frames. One pointer event per frame, so a scripted drag renders like a real one.
+
+#include "Viewer.h"
+
+#include <mvcl/core/Error.h>
+#include <mvcl/view/RenderSession.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+namespace mvcl::viewer {
+
+namespace {
+
+PointerButton buttonNamed(const ScriptCommand &c, const std::string &name) {
+    if (name == "left") return PointerButton::Left;
+    if (name == "middle") return PointerButton::Middle;
+    if (name == "right") return PointerButton::Right;
+    throw Error("script line " + std::to_string(c.line), c.name + ": unknown button '" + name + "' (left, middle, right)");
+}
+
+KeyModifier modifiersOf(const ScriptCommand &c) {
+    KeyModifier m = KeyModifier::None;
+    if (c.hasWord("shift")) m = m | KeyModifier::Shift;
+    if (c.hasWord("ctrl")) m = m | KeyModifier::Control;
+    if (c.hasWord("alt")) m = m | KeyModifier::Alt;
+    return m;
+}
+
+} // namespace
+
+void Viewer::runScript() {
+    if (!m_script || m_quit) return;
+    try {
+        // Commands run until one needs a frame drawn (pointer events, waits).
+        while (!m_script->isFinished() && !m_quit) {
+            if (m_waitFrames > 0) {
+                --m_waitFrames;
+                return;
+            }
+            if (!runCommand(m_script->current())) return; // not done yet: again next frame
+            m_script->advance();
+        }
+        if (m_script->isFinished()) m_quit = true;
+    } catch (const Error &e) {
+        std::fprintf(stderr, "mvcl-viewer: %s: %s\n", m_script->file().string().c_str(), e.what());
+        m_exitCode = 1;
+        m_quit = true;
+    }
+}
+
+bool Viewer::runCommand(const ScriptCommand &c) {
+    const std::string &name = c.name;
+    RenderSession &session = m_controller->renderSession();
+    auto fail = [&](const std::string &problem) -> bool {
+        throw Error("script line " + std::to_string(c.line), name + ": " + problem);
+    };
+    if (name == "move") {
+        m_pointer = {float(c.number(0)), float(c.number(1))};
+        handle(InputEvent::pointerMove(m_pointer));
+        m_waitFrames = 1;
+    } else if (name == "press" || name == "release") {
+        const PointerButton button = buttonNamed(c, c.word(0));
+        handle(name == "press" ? InputEvent::pointerPress(m_pointer, button, modifiersOf(c))
+                               : InputEvent::pointerRelease(m_pointer, button, modifiersOf(c)));
+        m_waitFrames = 1;
+    } else if (name == "click") {
+        const PointerButton button = buttonNamed(c, c.word(0));
+        m_pointer = {float(c.number(1)), float(c.number(2))};
+        handle(InputEvent::pointerMove(m_pointer));
+        handle(InputEvent::pointerPress(m_pointer, button, modifiersOf(c)));
+        handle(InputEvent::pointerRelease(m_pointer, button, modifiersOf(c)));
+        m_waitFrames = 1;
+    } else if (name == "drag") {
+        // Spread over frames: press, N moves, release; m_dragStep counts where we are.
+        const PointerButton button = buttonNamed(c, c.word(0));
+        const glm::vec2 from(float(c.number(1)), float(c.number(2))), to(float(c.number(3)), float(c.number(4)));
+        const int steps = c.args.size() > 5 && c.args[5] != "shift" && c.args[5] != "ctrl" && c.args[5] != "alt"
+                              ? std::max(1, c.integer(5))
+                              : 8;
+        if (m_dragStep < 0) {
+            m_pointer = from;
+            handle(InputEvent::pointerMove(m_pointer, modifiersOf(c)));
+            handle(InputEvent::pointerPress(m_pointer, button, modifiersOf(c)));
+            m_dragStep = 0;
+            return false;
+        }
+        if (m_dragStep < steps) {
+            ++m_dragStep;
+            m_pointer = from + (to - from) * (float(m_dragStep) / float(steps));
+            handle(InputEvent::pointerMove(m_pointer, modifiersOf(c)));
+            return false;
+        }
+        handle(InputEvent::pointerRelease(m_pointer, button, modifiersOf(c)));
+        m_dragStep = -1;
+        m_waitFrames = 1;
+    } else if (name == "scroll") {
+        if (c.args.size() == 3) m_pointer = {float(c.number(1)), float(c.number(2))};
+        handle(InputEvent::scrolled(m_pointer, {0.f, float(c.number(0))}));
+        m_waitFrames = 1;
+    } else if (name == "key") {
+        static const std::map<std::string, Key> kKeys = {
+            {"1", Key::Digit1}, {"2", Key::Digit2}, {"3", Key::Digit3}, {"4", Key::Digit4}, {"5", Key::Digit5},
+            {"6", Key::Digit6}, {"F", Key::F}, {"E", Key::E}, {"D", Key::D}, {"Z", Key::Z}, {"Y", Key::Y},
+            {"Home", Key::Home}, {"PageUp", Key::PageUp}, {"PageDown", Key::PageDown}, {"Delete", Key::Delete},
+            {"Backspace", Key::Backspace}, {"Escape", Key::Escape},
+        };
+        const std::string &key = c.word(0);
+        if (key == "F1") m_showHelp = !m_showHelp;
+        else if (key == "F12") writeScreenshot("out/mvcl-viewer-" + std::to_string(++m_screenshotCount) + ".png");
+        else if (const auto it = kKeys.find(key); it != kKeys.end()) handle(InputEvent::keyPress(it->second, modifiersOf(c)));
+        else fail("unknown key '" + key + "'");
+        m_waitFrames = 1;
+    } else if (name == "add-lens") {
+        m_controller->addLens(c.word(0), {float(c.number(1)), float(c.number(2))});
+    } else if (name == "select") {
+        m_controller->setSelectedLens(c.integer(0));
+    } else if (name == "set-property") {
+        m_controller->setLensProperty(c.integer(0), c.word(1), c.word(2));
+    } else if (name == "set-layer") {
+        if (c.word(1) != "visible" && c.word(1) != "hidden") fail("expects visible or hidden");
+        m_controller->setLayerVisibility(c.integer(0), c.word(1) == "visible" ? LayerVisibility::Visible : LayerVisibility::Hidden);
+    } else if (name == "wait-converged") {
+        // Idle, and the last published pixels are on screen.
+        if (session.hasWork() || !m_imageCurrent) return false;
+    } else if (name == "wait-frames") {
+        m_waitFrames = std::max(0, c.integer(0));
+    } else if (name == "screenshot") {
+        writeScreenshot(c.word(0));
+    } else if (name == "window-screenshot") {
+        m_pendingWindowShot = c.word(0);
+        m_waitFrames = 1;
+    } else if (name == "save-session") {
+        m_controller->saveSession(c.word(0));
+    } else if (name == "load-session") {
+        stopHistogramWorker();
+        m_controller->loadSession(c.word(0));
+        m_imageCurrent = false;
+    } else if (name == "open") {
+        stopHistogramWorker();
+        m_controller->openScene(c.word(0));
+        m_imageCurrent = false;
+    } else if (name == "expect-lenses") {
+        if (m_controller->lensCount() != c.integer(0))
+            fail("the stack holds " + std::to_string(m_controller->lensCount()) + " lenses, not " + c.word(0));
+    } else if (name == "bench-begin") {
+        m_benchName = c.word(0);
+        m_benchFrames.clear();
+        m_benchImageUpdates = 0;
+    } else if (name == "bench-end") {
+        std::vector<double> frames = m_benchFrames;
+        std::sort(frames.begin(), frames.end());
+        if (!frames.empty())
+            std::printf("bench %s: %zu UI frames, median %.2f ms, worst %.2f ms per frame, %llu image updates\n",
+                        m_benchName.c_str(), frames.size(), frames[frames.size() / 2], frames.back(),
+                        (unsigned long long)m_benchImageUpdates);
+        std::fflush(stdout);
+        m_benchName.clear();
+    } else if (name == "quit") {
+        m_exitCode = c.args.empty() ? 0 : c.integer(0);
+        m_quit = true;
+    }
+    return true;
+}
+
+} // namespace mvcl::viewer

@@ -1,0 +1,99 @@
+// mvcl-viewer in a real window (Xvfb + Mesa llvmpipe, OpenGL 3.3 core), driven by --script:
+// three overlapping lenses added and dragged over a real layered model, the session saved with
+// a screenshot; then a second viewer opens that session and must show the same image, which
+// must also match the committed baseline. Regenerate the baseline with MVCL_UPDATE_GOLDEN=1.
+
+#include "ImageCompare.h"
+#include "apps/RenderCliRunner.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using namespace mvcl::test;
+
+namespace {
+
+fs::path viewerDir() {
+    const fs::path dir = outDir() / "viewer";
+    fs::create_directories(dir);
+    return dir;
+}
+
+void writeScript(const fs::path &file, const std::string &text) {
+    std::ofstream(file) << text;
+}
+
+/// The viewer under a virtual X server, 1280×720 window (a 900×720 view beside the panels),
+/// fixed sampling so that an image does not depend on when edits arrived.
+CommandResult runViewer(const std::string &args) {
+    return runCommand("xvfb-run -a -s '-screen 0 1400x900x24' " + std::string(MVCL_VIEWER_EXE) +
+                      " --size 1280x720 --sampling fixed --spp 4 " + args);
+}
+
+} // namespace
+
+TEST(ViewerEndToEnd, ThreeDraggedLensesSurviveASavedAndReopenedSession) {
+    ASSERT_EQ(runCommand("command -v xvfb-run").exitCode, 0) << "xvfb-run is missing (scripts/bootstrap.sh installs it)";
+    const fs::path dir = viewerDir();
+    const fs::path session = dir / "session.json", first = dir / "first.png", second = dir / "second.png";
+    for (const fs::path &f : {session, first, second}) fs::remove(f);
+    const std::string kidney = dataPath("models/HRA_Kidney_Female_Left/VH_F_Kidney_L.glb");
+
+    writeScript(dir / "build.txt", R"(# three overlapping lenses, each dragged
+wait-converged
+add-lens layer 0.45 0.5
+set-property 0 layers 1-
+drag left 405 360 430 350 6
+add-lens achromatic 0.6 0.45
+drag left 540 324 520 310 6
+add-lens shadow 0.4 0.6
+drag left 360 432 380 420 6
+expect-lenses 3
+wait-converged
+screenshot )" + first.string() + R"(
+save-session )" + session.string() + R"(
+quit
+)");
+    const CommandResult build = runViewer(quoted(kidney) + " --script " + quoted((dir / "build.txt").string()));
+    ASSERT_EQ(build.exitCode, 0) << build.output;
+    ASSERT_TRUE(fs::exists(first)) << build.output;
+    ASSERT_TRUE(fs::exists(session)) << build.output;
+
+    writeScript(dir / "reopen.txt", "wait-converged\nexpect-lenses 3\nscreenshot " + second.string() + "\nquit\n");
+    const CommandResult reopen = runViewer("--session " + quoted(session.string()) + " --script " +
+                                           quoted((dir / "reopen.txt").string()));
+    ASSERT_EQ(reopen.exitCode, 0) << reopen.output;
+    ASSERT_TRUE(fs::exists(second)) << reopen.output;
+
+    const mvcl::Framebuffer a = mvcl::readImage(first), b = mvcl::readImage(second);
+    const ImageDifference same = compareImages(a, b, 2);
+    EXPECT_LT(same.differingFraction, 0.001) << "max channel delta " << same.maxChannelDelta;
+
+    const fs::path golden = fs::path(MVCL_GOLDEN_DIR) / "viewer-three-lenses.png";
+    if (updateGoldenRequested()) {
+        fs::copy_file(first, golden, fs::copy_options::overwrite_existing);
+        GTEST_SKIP() << "wrote " << golden;
+    }
+    ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run with MVCL_UPDATE_GOLDEN=1";
+    const ImageDifference diff = compareImages(a, mvcl::readImage(golden), 8);
+    EXPECT_LT(diff.differingFraction, 0.002) << "max channel delta " << diff.maxChannelDelta;
+}
+
+TEST(ViewerEndToEnd, ABrokenScriptOrSessionIsAClearErrorNotACrash) {
+    ASSERT_EQ(runCommand("command -v xvfb-run").exitCode, 0) << "xvfb-run is missing (scripts/bootstrap.sh installs it)";
+    const fs::path dir = viewerDir();
+    writeScript(dir / "typo.txt", "wait-converged\nmvoe 10 10\n");
+    const CommandResult typo = runViewer("builtin:onion --script " + quoted((dir / "typo.txt").string()));
+    EXPECT_EQ(typo.exitCode, 2) << typo.output;
+    EXPECT_NE(typo.output.find("typo.txt:2"), std::string::npos) << typo.output;
+
+    std::ofstream(dir / "broken.json") << "{ \"version\": 1, \"lenses\": [ {\"type\": \"nope\"} ] }";
+    writeScript(dir / "quit.txt", "wait-converged\nexpect-lenses 0\nquit\n");
+    const CommandResult broken = runViewer("builtin:onion --session " + quoted((dir / "broken.json").string()) +
+                                           " --script " + quoted((dir / "quit.txt").string()));
+    EXPECT_EQ(broken.exitCode, 0) << "the viewer keeps running on its default view\n" << broken.output;
+    EXPECT_NE(broken.output.find("broken.json"), std::string::npos) << broken.output;
+}
