@@ -10,6 +10,7 @@
 
 #include "CommandLineValues.h"
 
+#include <mvcl/core/WorkerPool.h>
 #include <mvcl/model/BuiltinScenes.h>
 #include <mvcl/model/GltfLoader.h>
 #include <mvcl/model/Scene.h>
@@ -36,7 +37,6 @@
 #include <stdexcept>
 #include <exception>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace {
@@ -47,23 +47,13 @@ double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// Runs f(i) for i in [0, n) on `threads` threads, in chunks handed out dynamically.
+/// Runs f(i) for i in [0, n) on `threads` threads of the framework's worker pool, in chunks of
+/// up to 256 rays: one ray per item would cost more in scheduling than a fast ray takes.
 template <class F>
-void parallelFor(int n, int threads, const F &f) {
-    std::atomic<int> next{0};
-    constexpr int kChunk = 256;
-    auto worker = [&] {
-        for (;;) {
-            const int begin = next.fetch_add(kChunk);
-            if (begin >= n) return;
-            const int end = std::min(n, begin + kChunk);
-            for (int i = begin; i < end; ++i) f(i);
-        }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (std::thread &t : pool) t.join();
+void parallelRays(int n, int threads, const F &f) {
+    mvcl::parallelForChunks(std::size_t(n), threads, 256, [&f](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) f(int(i));
+    });
 }
 
 /// Best (shortest) wall time of `repeat` runs of f.
@@ -117,7 +107,7 @@ std::optional<Options> parseOptions(int argc, char **argv) {
         std::fputs(app.help().c_str(), stdout);
         return std::nullopt;
     }
-    if (o.threads <= 0) o.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    if (o.threads <= 0) o.threads = mvcl::workerThreadCount();
     return o;
 }
 
@@ -288,7 +278,7 @@ int main(int argc, char **argv) {
         std::vector<char> found(n);
         const mvcl::RayQuery primaryQuery; // made once, as a renderer would per frame
         const double oursPrimary = bestSeconds(opt.repeat, [&] {
-            parallelFor(n, opt.threads, [&](int i) {
+            parallelRays(n, opt.threads, [&](int i) {
                 found[i] = tracer->closestHit(primary.rays[i], primaryQuery, hits[i]);
             });
         });
@@ -333,14 +323,14 @@ int main(int argc, char **argv) {
         shadowQuery.tMax = 1.f - 1e-4f;
         std::vector<char> occluded(ns);
         const double oursShadow = bestSeconds(opt.repeat, [&] {
-            parallelFor(ns, opt.threads,
-                        [&](int i) { occluded[i] = tracer->anyHit(shadow[i], shadowQuery); });
+            parallelRays(ns, opt.threads,
+                         [&](int i) { occluded[i] = tracer->anyHit(shadow[i], shadowQuery); });
         });
 
         std::vector<mvcl::Hit> bounceHits(nb);
         std::vector<char> bounceFound(nb);
         const double oursBounce = bestSeconds(opt.repeat, [&] {
-            parallelFor(nb, opt.threads, [&](int i) {
+            parallelRays(nb, opt.threads, [&](int i) {
                 bounceFound[i] = tracer->closestHit(bounce[i], primaryQuery, bounceHits[i]);
             });
         });
@@ -349,12 +339,12 @@ int main(int argc, char **argv) {
 #ifdef MVCL_HAVE_EMBREE
         std::vector<RTCRayHit> eh(n);
         embreePrimary = bestSeconds(opt.repeat, [&] {
-            parallelFor(n, opt.threads,
-                        [&](int i) { intersectEmbree(escene, primary.rays[i], eh[i]); });
+            parallelRays(n, opt.threads,
+                         [&](int i) { intersectEmbree(escene, primary.rays[i], eh[i]); });
         });
         std::vector<char> eOccluded(ns);
         embreeShadow = bestSeconds(opt.repeat, [&] {
-            parallelFor(ns, opt.threads, [&](int i) {
+            parallelRays(ns, opt.threads, [&](int i) {
                 RTCIntersectContext ctx;
                 rtcInitIntersectContext(&ctx);
                 RTCRay ray;
@@ -372,7 +362,7 @@ int main(int argc, char **argv) {
         });
         std::vector<RTCRayHit> ebh(nb);
         embreeBounce = bestSeconds(opt.repeat, [&] {
-            parallelFor(nb, opt.threads, [&](int i) { intersectEmbree(escene, bounce[i], ebh[i]); });
+            parallelRays(nb, opt.threads, [&](int i) { intersectEmbree(escene, bounce[i], ebh[i]); });
         });
 #endif
         std::printf("\n");

@@ -8,6 +8,7 @@
 #include "tracer/TracerTestUtil.h"
 
 #include <mvcl/core/FloatBits.h>
+#include <mvcl/core/WorkerPool.h>
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/Tracer.h>
 
@@ -24,7 +25,6 @@
 #include <cstdio>
 #include <limits>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace mvcl::robustness {
@@ -543,7 +543,7 @@ Scene makeTieSoup(SoupKind kind, int n) {
 }
 
 TEST(RobustnessIntersection, BvhEqualsBruteForceOnTieSoupsAtAnyBuildThreadCount) {
-    const int n = int(std::max(1u, std::thread::hardware_concurrency()));
+    const int n = workerThreadCount();
     uint64_t compared = 0, oracleMismatches = 0, threadMismatches = 0, wrongWinner = 0;
     for (const SoupKind kind : {SoupKind::Identical, SoupKind::Coplanar, SoupKind::DuplicatedPairs}) {
         for (const int size : {1000, 10000, 100000}) {

@@ -6,6 +6,7 @@
 
 #include "tracer/TracerTestUtil.h"
 
+#include <mvcl/core/WorkerPool.h>
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/RayOffset.h>
 #include <mvcl/tracer/Tracer.h>
@@ -19,18 +20,15 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <thread>
 
 namespace mvcl::robustness {
 namespace {
-
-int workerThreads() { return int(std::max(1u, std::thread::hardware_concurrency())); }
 
 void measured(const std::string &line) { std::printf("[ measured ] %s\n", line.c_str()); }
 
 // Case 14 (pbrt-v4 Triangle.Reintersect, with random signs on top).
 TEST(RobustnessOffsets, SpawnedRaysNeverReintersectAcrossSixteenDecades) {
-    const CaseCounts c = runReintersectionCase(1000, 1000, 14, workerThreads());
+    const CaseCounts c = runReintersectionCase(1000, 1000, 14, workerThreadCount());
     measured("re-intersection: 1000 triangles with coordinates ±10^U(-8,8), spawned rays=" +
              std::to_string(c.rays) + " self-hits=" + std::to_string(c.failures));
     ::testing::Test::RecordProperty("spawned", std::to_string(c.rays));

@@ -3,6 +3,7 @@
 #include "tracer/TracerTestUtil.h"
 
 #include <mvcl/core/FloatBits.h>
+#include <mvcl/core/WorkerPool.h>
 #include <mvcl/tracer/RayOffset.h>
 #include <mvcl/tracer/Tracer.h>
 #include <mvcl/tracer/TriangleIntersection.h>
@@ -16,7 +17,7 @@
 #include <limits>
 #include <memory>
 #include <sstream>
-#include <thread>
+#include <vector>
 
 namespace mvcl::robustness {
 
@@ -26,21 +27,16 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 bool isFinite(const glm::vec3 &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-/// Runs body(begin, end, counts) on `threads` contiguous slices of [0, n) and sums the counts;
-/// the sums (and the order-independent hash) do not depend on the slicing.
+/// Runs body(begin, end, counts) for consecutive slices of [0, n) of `slice` items each, on
+/// `threads` threads of the worker pool, and sums the counts; the sums (and the order-independent
+/// hash) depend neither on the slicing nor on the thread count.
 template <class Body>
-CaseCounts parallelCounts(uint64_t n, int threads, const Body &body) {
-    threads = std::max(1, threads);
-    std::vector<CaseCounts> partial(static_cast<std::size_t>(threads));
-    std::vector<std::thread> pool;
-    for (int k = 0; k < threads; ++k) {
-        const uint64_t begin = n * uint64_t(k) / uint64_t(threads);
-        const uint64_t end = n * uint64_t(k + 1) / uint64_t(threads);
-        auto run = [&, k, begin, end] { body(begin, end, partial[std::size_t(k)]); };
-        if (k + 1 == threads) run();
-        else pool.emplace_back(run);
-    }
-    for (std::thread &t : pool) t.join();
+CaseCounts parallelCounts(uint64_t n, int threads, uint64_t slice, const Body &body) {
+    const uint64_t slices = (n + slice - 1) / slice;
+    std::vector<CaseCounts> partial(static_cast<std::size_t>(slices));
+    parallelFor(static_cast<std::size_t>(slices), std::max(1, threads), [&](std::size_t k) {
+        body(uint64_t(k) * slice, std::min(n, uint64_t(k + 1) * slice), partial[k]);
+    });
     CaseCounts total;
     for (const CaseCounts &c : partial) {
         total.rays += c.rays;
@@ -165,7 +161,8 @@ CaseCounts runWatertightCase(const WatertightConfig &config, int threads) {
     // Targets this far above the clip plane are unambiguous even where float spacing is 1/64.
     const double clipMargin = 0.1;
 
-    return parallelCounts(config.rays, threads, [&](uint64_t begin, uint64_t end, CaseCounts &out) {
+    // Slices of 4096 rays: coarse enough that handing them out costs nothing next to tracing.
+    return parallelCounts(config.rays, threads, 4096, [&](uint64_t begin, uint64_t end, CaseCounts &out) {
         std::vector<uint32_t> neighbours;
         for (uint64_t i = begin; i < end; ++i) {
             CaseRng rng(config.seed, i);
@@ -232,7 +229,8 @@ CaseCounts runReintersectionCase(uint32_t triangles, uint32_t raysPerHit, uint64
         const double magnitude = std::pow(10.0, rng.uniform(-8.0, 8.0));
         return (rng.next() & 1) ? magnitude : -magnitude;
     };
-    return parallelCounts(triangles, threads, [&](uint64_t begin, uint64_t end, CaseCounts &out) {
+    // One triangle per slice: each builds a tracer and traces raysPerHit rays.
+    return parallelCounts(triangles, threads, 1, [&](uint64_t begin, uint64_t end, CaseCounts &out) {
         for (uint64_t i = begin; i < end; ++i) {
             CaseRng rng(seed, i);
             Scene scene;

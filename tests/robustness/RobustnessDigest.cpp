@@ -9,12 +9,13 @@
 
 #include "RobustnessCases.h"
 
+#include <mvcl/core/WorkerPool.h>
+
 #include <cinttypes>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
-#include <thread>
 
 using namespace mvcl::robustness;
 
@@ -41,7 +42,7 @@ bool parseCount(const char *text, uint64_t &value) {
 
 int main(int argc, char **argv) {
     uint64_t rays = 200000, triangles = 1000, spawned = 1000;
-    uint64_t threads = std::max(1u, std::thread::hardware_concurrency());
+    uint64_t threads = uint64_t(mvcl::workerThreadCount());
     for (int i = 1; i < argc; i += 2) { // options come as "--name value" pairs
         uint64_t *target = nullptr;
         if (!std::strcmp(argv[i], "--rays")) target = &rays;

@@ -4,19 +4,18 @@
 
 #include "RobustnessCases.h"
 
+#include <mvcl/core/WorkerPool.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <string>
-#include <thread>
 
 namespace mvcl::robustness {
 namespace {
 
 constexpr uint64_t kRaysPerCase = 1000000;
-
-int workerThreads() { return int(std::max(1u, std::thread::hardware_concurrency())); }
 
 void report(const std::string &name, const CaseCounts &c) {
     ::testing::Test::RecordProperty("rays", std::to_string(c.rays));
@@ -31,7 +30,7 @@ class RobustnessWatertight : public ::testing::TestWithParam<WatertightConfig> {
 
 TEST_P(RobustnessWatertight, ZeroLeaksOverAMillionRays) {
     const WatertightConfig &config = GetParam();
-    const CaseCounts c = runWatertightCase(config, workerThreads());
+    const CaseCounts c = runWatertightCase(config, workerThreadCount());
     report(config.name, c);
     EXPECT_EQ(c.rays, config.rays);
     EXPECT_EQ(c.failures, 0u) << "leaks of " << c.rays << " rays";
@@ -66,7 +65,7 @@ TEST(RobustnessWatertightClipped, UpperHalfStaysWatertightInsideAClipHalfSpace) 
         WatertightConfig config = base;
         config.name += "ClippedToUpperHalf";
         config.clipLowerHalf = true;
-        const CaseCounts c = runWatertightCase(config, workerThreads());
+        const CaseCounts c = runWatertightCase(config, workerThreadCount());
         report(config.name, c);
         EXPECT_EQ(c.failures, 0u) << config.name;
     }

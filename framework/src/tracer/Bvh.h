@@ -91,8 +91,8 @@ struct BvhBuildInput {
 };
 
 /// Binned SAH build with leaf costs counted in blocks of four primitives (what the 4-wide
-/// triangle kernel tests at once), multithreaded over subtrees (TaskPool.h). Deterministic: the
-/// tree does not depend on the thread count.
+/// triangle kernel tests at once), multithreaded over subtrees (tasks on the worker pool).
+/// Deterministic: the tree does not depend on the thread count.
 Bvh buildBvh(BvhBuildInput input);
 
 } // namespace mvcl::detail

@@ -1,26 +1,30 @@
 // Binned SAH BVH build (Wald 2007 style binning, up to 32 bins, all three axes in one pass),
-// parallel over subtrees: every node of at least kMinParallelPrims pushes one child to a task
-// pool, at any depth, so no large subtree is left to one thread at the end. Each node receives
-// its bounds and centroid bounds from its parent (the partition pass computes them for both
-// children), so a node reads its primitives twice: once to bin, once to partition. The tree
-// depends only on the input, never on the thread count; only the slots of child pairs (taken
-// from an atomic counter) do, and the wide collapse lays out its output independently of them.
+// parallel over subtrees: every node of at least kMinParallelPrims pushes one child as a task of
+// the framework's worker pool (a tbb::task_group in its arena), at any depth, so no large subtree
+// is left to one thread at the end. Each node receives its bounds and centroid bounds from its
+// parent (the partition pass computes them for both children), so a node reads its primitives
+// twice: once to bin, once to partition. The tree depends only on the input, never on the
+// thread count; only the slots of child pairs (taken from an atomic counter) do, and the wide
+// collapse lays out its output independently of them.
 
 #include "Bvh.h"
-#include "ParallelFor.h"
-#include "TaskPool.h"
+#include "core/WorkerArena_p.h"
 
 #include <glm/common.hpp>
 
 #include <mvcl/core/Error.h>
 #include <mvcl/core/FloatBits.h>
+#include <mvcl/core/WorkerPool.h>
+
+#include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
-#include <future>
 #include <mutex>
 #include <utility>
 #include <vector>
@@ -255,11 +259,17 @@ struct BinSet {
     }
 };
 
+/// Subtree builds are pushed as tasks whenever a node is large enough, at any depth, and idle
+/// threads take them: with a fixed spawn depth a single large subtree below it kept one core busy
+/// while the other waited at the end of the build. Tasks never wait for one another (results
+/// that need both children are fixed up by finishLayerMasks() after the group is done), so there
+/// are no joins inside the tree.
 class Builder {
 public:
-    /// pool: where subtrees are pushed as tasks (null: build everything on the calling thread).
-    Builder(BuildPrim *prims, BvhNode *slots, int maxLeaf, TaskPool *pool)
-        : m_prims(prims), m_slots(slots), m_maxLeaf(maxLeaf), m_pool(pool) {}
+    /// tasks: where subtrees are pushed (null: build everything on the calling thread). All
+    /// calls then run inside the worker arena the group's tasks are spawned in.
+    Builder(BuildPrim *prims, BvhNode *slots, int maxLeaf, tbb::task_group *tasks)
+        : m_prims(prims), m_slots(slots), m_maxLeaf(maxLeaf), m_tasks(tasks) {}
 
     /// Builds the subtree of [begin, end) into `slot`; `bounds` are that range's bounds.
     void build(uint32_t slot, uint32_t begin, uint32_t end, int depth, const RangeBounds &bounds) {
@@ -317,10 +327,10 @@ public:
 
         const uint32_t base = m_nextSlot.fetch_add(2, std::memory_order_relaxed);
         node.index = base; // interior: children at base, base + 1
-        if (m_pool && n >= kMinParallelPrims) {
+        if (m_tasks && n >= kMinParallelPrims) {
             // Left as a task for any idle thread, right here. Neither waits for the other: the
             // layer mask of this node is filled in by finishLayerMasks() afterwards.
-            m_pool->push([this, base, begin, mid, depth, left] { build(base, begin, mid, depth + 1, left); });
+            m_tasks->run([this, base, begin, mid, depth, left] { build(base, begin, mid, depth + 1, left); });
             build(base + 1, mid, end, depth + 1, right);
             std::lock_guard<std::mutex> lock(m_spawnedMutex);
             m_spawned.push_back({depth, slot});
@@ -351,14 +361,19 @@ private:
                    int &bestSplit, double &bestCost) const {
         const int nBins = binner.nBins;
         BinSet all(nBins);
-        if (m_pool && end - begin >= kMinParallelBinning) {
-            // The top nodes would otherwise bin alone: bin the halves on two threads. Merging
-            // bins (min/max and integer counts) is exact, so the result is the same.
+        if (m_tasks && end - begin >= kMinParallelBinning) {
+            // The top nodes would otherwise bin alone: bin the halves as two tasks, so an idle
+            // thread can take one. Merging bins (min/max and integer counts) is exact, so the
+            // result is the same whoever bins which half. Isolated: while the other half is
+            // binned elsewhere, this thread waits instead of starting an unrelated subtree on top
+            // of its stack, which would hold up this node's split (and its children) until that
+            // whole subtree is done.
             const uint32_t mid = begin + (end - begin) / 2;
             BinSet upper(nBins);
-            auto task = std::async(std::launch::async, [&] { upper.add(binner, m_prims, mid, end); });
-            all.add(binner, m_prims, begin, mid);
-            task.get();
+            tbb::this_task_arena::isolate([&] {
+                tbb::parallel_invoke([&] { all.add(binner, m_prims, begin, mid); },
+                                     [&] { upper.add(binner, m_prims, mid, end); });
+            });
             all.merge(upper, nBins);
         } else {
             all.add(binner, m_prims, begin, end);
@@ -430,7 +445,7 @@ private:
     BuildPrim *m_prims;
     BvhNode *m_slots;
     int m_maxLeaf;
-    TaskPool *m_pool;
+    tbb::task_group *m_tasks;
     std::mutex m_spawnedMutex;
     std::vector<std::pair<int, uint32_t>> m_spawned; ///< (depth, slot) of nodes that spawned
     std::atomic<uint32_t> m_nextSlot{1}; ///< slot 0 is the root
@@ -460,7 +475,7 @@ Bvh buildBvh(BvhBuildInput input) {
     constexpr std::size_t kChunk = 16384;
     const std::size_t chunks = (n + kChunk - 1) / kChunk;
     std::vector<RangeBounds> chunkBounds(chunks);
-    parallelFor(chunks, input.threads, [&](std::size_t c) {
+    mvcl::parallelFor(chunks, input.threads, [&](std::size_t c) {
         const std::size_t end = std::min(n, (c + 1) * kChunk);
         RangeBounds bounds; // local: neighbouring chunks' bounds share cache lines
         for (std::size_t i = c * kChunk; i < end; ++i) {
@@ -494,20 +509,25 @@ Bvh buildBvh(BvhBuildInput input) {
     const int maxLeaf = std::clamp(input.maxLeafSize, 1, int(BvhNode::kMaxLeafCount));
     // At most n leaves, so at most 2n − 1 nodes; pages past the ones used are never touched.
     bvh.nodes = allocateNodes(2 * n);
-    if (input.threads > 1) {
-        TaskPool pool;
-        Builder builder(build.get(), bvh.nodes.get(), maxLeaf, &pool);
-        pool.run(input.threads, [&] { builder.build(0, 0, uint32_t(n), 0, rootBounds); });
-        builder.finishLayerMasks();
+    const auto keepStats = [&bvh](const Builder &builder) {
         bvh.nodeCount = builder.slotsUsed();
         bvh.leafCount = builder.leafCount();
         bvh.maxDepth = builder.maxDepth();
+    };
+    if (input.threads > 1) {
+        // The group is made and waited for inside the arena: run() spawns into the arena of the
+        // calling thread, and wait() belongs in the same one.
+        workerArena(input.threads).execute([&] {
+            tbb::task_group tasks;
+            Builder builder(build.get(), bvh.nodes.get(), maxLeaf, &tasks);
+            tasks.run_and_wait([&] { builder.build(0, 0, uint32_t(n), 0, rootBounds); });
+            builder.finishLayerMasks();
+            keepStats(builder);
+        });
     } else {
         Builder builder(build.get(), bvh.nodes.get(), maxLeaf, nullptr);
         builder.build(0, 0, uint32_t(n), 0, rootBounds);
-        bvh.nodeCount = builder.slotsUsed();
-        bvh.leafCount = builder.leafCount();
-        bvh.maxDepth = builder.maxDepth();
+        keepStats(builder);
     }
 
     bvh.order.resize(n);

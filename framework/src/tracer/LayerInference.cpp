@@ -1,14 +1,13 @@
 #include <mvcl/tracer/LayerInference.h>
 
 #include <mvcl/core/FloatBits.h>
+#include <mvcl/core/WorkerPool.h>
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/Tracer.h>
 
 #include <algorithm>
-#include <atomic>
 #include <map>
 #include <set>
-#include <thread>
 #include <vector>
 
 namespace mvcl {
@@ -126,7 +125,6 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
         std::vector<char> active(meshCount, 0);
         std::vector<float> fraction(parts.size(), 0.f);
         PeelState state{&tracer, &partOf, &active};
-        const unsigned threadCount = std::max(1u, std::min(std::thread::hardware_concurrency(), 16u));
 
         int layer = firstLayer;
         while (!remaining.empty()) {
@@ -140,20 +138,14 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
                 active[i] = mesh.layerSource == LayerSource::Unassigned ? char(assigned[partOf[i]] < 0)
                                                                          : char(mesh.layer >= layer);
             }
-            std::atomic<std::size_t> next{0};
-            const auto work = [&] {
-                for (std::size_t k = next++; k < remaining.size(); k = next++) {
-                    const uint32_t p = remaining[k];
-                    const auto &points = parts[p].samples;
-                    std::size_t enclosed = 0;
-                    for (const glm::vec3 &pt : points) enclosed += isEnclosed(state, pt, p) ? 1 : 0;
-                    fraction[p] = points.empty() ? 0.f : float(enclosed) / float(points.size());
-                }
-            };
-            std::vector<std::thread> threads;
-            for (unsigned t = 1; t < threadCount && t < remaining.size(); ++t) threads.emplace_back(work);
-            work();
-            for (std::thread &t : threads) t.join();
+            // One part per item, on all cores: each writes only its own fraction.
+            parallelFor(remaining.size(), 0, [&](std::size_t k) {
+                const uint32_t p = remaining[k];
+                const auto &points = parts[p].samples;
+                std::size_t enclosed = 0;
+                for (const glm::vec3 &pt : points) enclosed += isEnclosed(state, pt, p) ? 1 : 0;
+                fraction[p] = points.empty() ? 0.f : float(enclosed) / float(points.size());
+            });
 
             std::vector<uint32_t> peel;
             for (uint32_t p : remaining)

@@ -1,7 +1,6 @@
 #include <mvcl/tracer/Tracer.h>
 
 #include "AnalyticShapes.h"
-#include "ParallelFor.h"
 #include "Bvh.h"
 #include "WideBvh.h"
 #include "RayContext.h"
@@ -10,6 +9,7 @@
 #include "WatertightTriangle4.h"
 
 #include <mvcl/core/FloatBits.h>
+#include <mvcl/core/WorkerPool.h>
 #include <mvcl/model/Scene.h>
 
 #include <glm/geometric.hpp>
@@ -20,7 +20,6 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
-#include <thread>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -290,9 +289,7 @@ Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
     : d(std::make_unique<Private>(scene, settings)) {
     const auto start = std::chrono::steady_clock::now();
 
-    const int threads = settings.buildThreads > 0
-                            ? settings.buildThreads
-                            : int(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = settings.buildThreads > 0 ? settings.buildThreads : workerThreadCount();
     detail::BvhBuildInput input;
     input.threads = threads;
     // Triangles in chunks of at most kChunk of one mesh: a parallel pass counts each chunk's
@@ -324,7 +321,7 @@ Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
             emit(i, p0, p1, p2);
         }
     };
-    detail::parallelFor(chunks.size(), threads, [&](std::size_t c) {
+    parallelFor(chunks.size(), threads, [&](std::size_t c) {
         forValid(chunks[c], [&](uint32_t, const glm::vec3 &, const glm::vec3 &, const glm::vec3 &) {
             ++chunks[c].valid;
         });
@@ -341,7 +338,7 @@ Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
             validSpheres.push_back(uint32_t(s));
     }
     input.prims.allocate(triangles + validSpheres.size());
-    detail::parallelFor(chunks.size(), threads, [&](std::size_t c) {
+    parallelFor(chunks.size(), threads, [&](std::size_t c) {
         const Chunk &ch = chunks[c];
         const uint8_t layer = clampLayer(scene.meshes[ch.mesh].layer);
         std::size_t out = ch.offset;

@@ -6,7 +6,8 @@
 // thread count.
 
 #include "WideBvh.h"
-#include "ParallelFor.h"
+
+#include <mvcl/core/WorkerPool.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -188,7 +189,7 @@ WideBvh collapseToWide(const Bvh &bvh, int threads) {
         else out.root = top.collapse(0, kTopLevels - 1, &tasks);
         topNodes = top.nextNode();
     }
-    parallelFor(tasks.size(), threads, [&](std::size_t i) {
+    mvcl::parallelFor(tasks.size(), threads, [&](std::size_t i) {
         countSubtree(bvh.nodes.get(), tasks[i].node, tasks[i].nodeCount, tasks[i].blockCount);
     });
     uint32_t nodeCount = topNodes, blockCount = 0;
@@ -203,7 +204,7 @@ WideBvh collapseToWide(const Bvh &bvh, int threads) {
     out.blocks = allocateArray<PrimBlock>(blockCount);
     // Not value-initialised: the tasks below write every lane, each on its own thread.
     out.info = allocateArray<PrimInfo>(4 * std::size_t(blockCount));
-    parallelFor(tasks.size(), threads, [&](std::size_t i) {
+    mvcl::parallelFor(tasks.size(), threads, [&](std::size_t i) {
         const Task &t = tasks[i];
         Collapser c(bvh, out, t.nodeBase, t.blockBase);
         const uint32_t ref = c.reference(t.node);
