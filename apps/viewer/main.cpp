@@ -34,6 +34,7 @@ int main(int argc, char **argv) {
     glfwSwapInterval(options.script.empty() ? 1 : 0); // scripts run as fast as frames can be drawn
 
     ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr; // the layout is fixed; no imgui.ini in the user's folder
     ImGui::StyleColorsDark();
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     ImGui_ImplOpenGL3_Init("#version 330 core");
