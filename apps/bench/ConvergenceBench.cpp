@@ -514,6 +514,11 @@ int runConvergenceBench(int argc, char **argv) {
                std::to_string(o.width) + "x" + std::to_string(o.height) + "\nreference spp " +
                std::to_string(o.referenceSpp) + "\nseeds " + std::to_string(kReferenceSeeds[0]) + " " +
                std::to_string(kReferenceSeeds[1]) + "\nlenses " + lensStackJson(lenses) + "\n";
+        // The plugins' code shapes the image as much as the library's.
+        for (const std::shared_ptr<Lens> &lens : lenses.lenses.lenses()) {
+            const std::string origin = registry.origin(lens->typeName());
+            key += "plugin " + lens->typeName() + " " + fileHash(origin) + "\n";
+        }
         const Reference ref = makeReference(setup, o, key);
         if (ref.fromCache)
             std::printf("reference  %d spp x 2 seeds, cached: %s\n", o.referenceSpp, ref.files.c_str());
