@@ -10,8 +10,8 @@
 //    difference by √2·σ, their mean by σ/√2). Cached on disk, keyed by everything it depends on.
 // 2. For each seed: uniform = Fixed renders at 1, 2, 4, … max-spp samples, each its own session;
 //    progressive = one Progressive session up to max-spp, measured after every pass;
-//    adaptive = one Adaptive session (targetError --adaptive-error, default 0: only pixels
-//    whose error estimate is zero stop) up to max-spp, measured after every pass.
+//    adaptive = one Adaptive session (targetError --adaptive-error, default 1e-4; 0 would turn
+//    the error test off) up to max-spp, measured after every pass.
 //    One RenderSession class does all three, so they share the sampler and the renderer.
 // 3. Time = wall clock of renderPass() calls only (never the error computation).
 //    Errors against the reference: RMSE, relMSE (ε = 0.01), PSNR (peak 1, clamped), LDR-FLIP.
@@ -73,7 +73,9 @@ struct Options {
     int maxSpp = 256;
     int referenceSpp = 4096;
     int threads = 0;
-    float adaptiveError = 0.f;
+    /// Small, not 0: a target of 0 switches the error test off (RenderSettings), which makes
+    /// Adaptive sample exactly like Progressive. 1e-4 stops pixels whose samples agree.
+    float adaptiveError = 1e-4f;
     int adaptiveMin = RenderSettings{}.minSamplesPerPixel;
     std::string cacheDir = "out/convergence-cache";
     bool flip = true;
@@ -236,7 +238,17 @@ struct Measurement {
     int minSpp = 0;
     int maxSpp = 0;
     double seconds = 0.0;
+    uint64_t samples = 0; ///< pixel samples taken so far by this run (RenderPassStats::samples)
+    uint64_t rays = 0;    ///< rays traced so far by this run
     double rmse = 0.0, relMse = 0.0, psnr = 0.0, flip = -1.0;
+};
+
+/// Where a run stands after a pass.
+struct Progress {
+    int passes = 0;
+    double seconds = 0.0; ///< wall time of its passes
+    uint64_t samples = 0;
+    uint64_t rays = 0;
 };
 
 struct SceneSetup {
@@ -247,7 +259,7 @@ struct SceneSetup {
 };
 
 /// Runs passes until the session is idle. After every pass that did work, calls
-/// onPass(session, passNumber, secondsOfPassesSoFar); once idle, atEnd(session, passes, seconds).
+/// onPass(session, progress); once idle, atEnd(session, progress).
 template <class OnPass, class AtEnd>
 void runSession(const SceneSetup &setup, const RenderSettings &settings, OnPass onPass, AtEnd atEnd) {
     RenderSession session(*setup.tracer);
@@ -257,22 +269,24 @@ void runSession(const SceneSetup &setup, const RenderSettings &settings, OnPass 
     session.setSettings(settings);
     // A session that never goes idle is a bug in it; stop well after any sane schedule.
     const int passLimit = 4 * std::max(settings.samplesPerPixel, settings.maxSamplesPerPixel) + 64;
-    double seconds = 0.0;
-    int passes = 0;
+    Progress progress;
     for (;;) {
         const Clock::time_point start = Clock::now();
         const RenderPassStats stats = session.renderPass();
         const double elapsed = secondsSince(start);
         if (stats.kind == PassKind::Idle) break;
-        if (++passes > passLimit)
+        if (++progress.passes > passLimit)
             throw Error("RenderSession", "still not idle after " + std::to_string(passLimit) + " passes");
         if (stats.kind == PassKind::Preview || stats.wasCancelled)
-            std::fprintf(stderr, "mvcl-bench: warning: pass %d was %s%s, not expected without edits\n", passes,
+            std::fprintf(stderr, "mvcl-bench: warning: pass %d was %s%s, not expected without edits\n",
+                         progress.passes,
                          passKindName(stats.kind), stats.wasCancelled ? " (cancelled)" : "");
-        seconds += elapsed;
-        onPass(session, passes, seconds);
+        progress.seconds += elapsed;
+        progress.samples += stats.samples;
+        progress.rays += stats.rays.total();
+        onPass(session, progress);
     }
-    atEnd(session, passes, seconds);
+    atEnd(session, progress);
 }
 
 class Evaluator {
@@ -293,9 +307,10 @@ private:
 };
 
 Measurement sampleState(const RenderSession &session, const std::string &method, uint32_t seed, int step,
-                        double seconds, const Evaluator &evaluator) {
+                        const Progress &progress, const Evaluator &evaluator) {
     const ConvergenceStats c = session.convergence();
-    Measurement m{method, seed, step, c.meanSamples, c.minSamples, c.maxSamples, seconds};
+    Measurement m{method, seed, step, c.meanSamples, c.minSamples, c.maxSamples, progress.seconds,
+                  progress.samples, progress.rays};
     evaluator.measure(session.image(), m);
     return m;
 }
@@ -307,10 +322,10 @@ Framebuffer renderFixed(const SceneSetup &setup, int spp, uint32_t seed, double 
     s.seed = seed;
     Framebuffer image;
     runSession(
-        setup, s, [](const RenderSession &, int, double) {},
-        [&](const RenderSession &session, int, double total) {
+        setup, s, [](const RenderSession &, const Progress &) {},
+        [&](const RenderSession &session, const Progress &progress) {
             image = session.image();
-            seconds = total;
+            seconds = progress.seconds;
         });
     return image;
 }
@@ -371,43 +386,52 @@ void writeCsv(const std::string &path, const std::string &scene, const Reference
     if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
     std::ofstream out(p);
     if (!out) throw Error(path, "cannot write");
-    out << "scene,method,seed,step,mean_spp,min_spp,max_spp,seconds,rmse,relmse,psnr,flip\n";
+    out << "scene,method,seed,step,mean_spp,min_spp,max_spp,seconds,rmse,relmse,psnr,flip,samples,rays\n";
     // The reference's own error estimate, so plots can show how far below the curves it lies.
     out << scene << ",reference,0," << referenceSpp << ',' << referenceSpp << ',' << referenceSpp << ','
         << referenceSpp << ',' << number(ref.secondsPerRender) << ',' << number(ref.ownRmse) << ','
-        << number(ref.ownRelMse) << ",,\n";
+        << number(ref.ownRelMse) << ",,,,\n";
     for (const Measurement &m : rows)
         out << scene << ',' << m.method << ',' << m.seed << ',' << m.step << ',' << number(m.meanSpp) << ','
             << m.minSpp << ',' << m.maxSpp << ',' << number(m.seconds) << ',' << number(m.rmse) << ','
-            << number(m.relMse) << ',' << number(m.psnr) << ',' << (m.flip >= 0.0 ? number(m.flip) : "") << '\n';
+            << number(m.relMse) << ',' << number(m.psnr) << ',' << (m.flip >= 0.0 ? number(m.flip) : "") << ','
+            << m.samples << ',' << m.rays << '\n';
     if (!out) throw Error(path, "write failed");
 }
 
-/// Mean over seeds of every measured quantity, step by step. Uniform steps are matched by spp;
-/// pass-wise methods by pass number, over the passes every seed has.
-std::vector<Measurement> meanOverSeeds(const std::vector<Measurement> &rows, const std::string &method, int seeds) {
-    std::map<int, std::vector<const Measurement *>> bySteps;
+/// Mean over seeds of every measured quantity, point by point: uniform's points are its spp
+/// levels, a pass-wise method's are its passes. Adaptive runs of different seeds can take
+/// different numbers of passes; a run that went idle keeps its final state (its image and time
+/// no longer change), so every point averages all seeds.
+std::vector<Measurement> meanOverSeeds(const std::vector<Measurement> &rows, const std::string &method) {
+    std::map<uint32_t, std::vector<const Measurement *>> bySeed; // rows are in step order per seed
     for (const Measurement &m : rows)
-        if (m.method == method) bySteps[m.step].push_back(&m);
+        if (m.method == method) bySeed[m.seed].push_back(&m);
+    std::size_t length = 0;
+    for (const auto &[seed, run] : bySeed) length = std::max(length, run.size());
+    const double seeds = double(bySeed.size());
     std::vector<Measurement> mean;
-    for (const auto &[step, group] : bySteps) {
-        if (int(group.size()) != seeds) break; // from here on some seed has stopped
-        Measurement a{method, 0, step};
+    for (std::size_t k = 0; k < length; ++k) {
+        Measurement a{method, 0, int(k + 1)};
         a.minSpp = std::numeric_limits<int>::max();
         double psnrMse = 0.0; // PSNR is averaged as the MSE it comes from
         double flip = 0.0;
-        for (const Measurement *m : group) {
-            a.meanSpp += m->meanSpp / seeds;
-            a.minSpp = std::min(a.minSpp, m->minSpp);
-            a.maxSpp = std::max(a.maxSpp, m->maxSpp);
-            a.seconds += m->seconds / seeds;
-            a.rmse += m->rmse / seeds;
-            a.relMse += m->relMse / seeds;
-            psnrMse += std::pow(10.0, -m->psnr / 10.0) / seeds;
-            flip += m->flip / seeds;
+        bool haveFlip = true;
+        for (const auto &[seed, run] : bySeed) {
+            const Measurement &m = *run[std::min(k, run.size() - 1)];
+            if (method == "uniform") a.step = m.step;
+            a.meanSpp += m.meanSpp / seeds;
+            a.minSpp = std::min(a.minSpp, m.minSpp);
+            a.maxSpp = std::max(a.maxSpp, m.maxSpp);
+            a.seconds += m.seconds / seeds;
+            a.rmse += m.rmse / seeds;
+            a.relMse += m.relMse / seeds;
+            psnrMse += std::pow(10.0, -m.psnr / 10.0) / seeds;
+            flip += m.flip / seeds;
+            haveFlip = haveFlip && m.flip >= 0.0;
         }
         a.psnr = psnrMse > 0.0 ? -10.0 * std::log10(psnrMse) : std::numeric_limits<double>::infinity();
-        a.flip = group.front()->flip < 0.0 ? -1.0 : flip; // −1: FLIP was not computed
+        a.flip = haveFlip ? flip : -1.0; // −1: FLIP was not computed
         mean.push_back(a);
     }
     return mean;
@@ -455,7 +479,7 @@ std::string crossingText(const std::vector<Measurement> &mean, const Measurement
         const Measurement &last = mean.back();
         std::snprintf(text, sizeof text, ">%.3g", last.seconds / uniformFinal.seconds);
     } else {
-        std::snprintf(text, sizeof text, "%s%.3g", cross->atFirstPoint ? "≤" : "",
+        std::snprintf(text, sizeof text, "%s%.3g", cross->atFirstPoint ? "<=" : "",
                       cross->seconds / uniformFinal.seconds);
     }
     return text;
@@ -499,9 +523,11 @@ int runConvergenceBench(int argc, char **argv) {
         setup.base.timeLimitSeconds = 0.0;
 
         const std::string name = sceneStem(source);
+        const std::string lensText = lenses.lenses.isEmpty() ? "no lenses"
+                                                             : std::to_string(lenses.lenses.size()) + " lenses from " +
+                                                                   o.lensFile;
         std::printf("scene      %s (%zu triangles), %s\n", source.c_str(), tracer.buildStats().triangles,
-                    lenses.lenses.isEmpty() ? "no lenses"
-                                            : (std::to_string(lenses.lenses.size()) + " lenses from " + o.lensFile).c_str());
+                    lensText.c_str());
         std::printf("view       %dx%d, %s threads; %d seeds, up to %d spp; adaptive: target error %g, min %d spp\n",
                     o.width, o.height, o.threads ? std::to_string(o.threads).c_str() : "all", o.seeds, o.maxSpp,
                     double(o.adaptiveError), o.adaptiveMin);
@@ -549,12 +575,13 @@ int runConvergenceBench(int argc, char **argv) {
                 settings.samplesPerPixel = spp;
                 settings.seed = seed;
                 runSession(
-                    setup, settings, [](const RenderSession &, int, double) {},
-                    [&](const RenderSession &session, int, double seconds) {
-                        rows.push_back(sampleState(session, "uniform", seed, spp, seconds, evaluator));
+                    setup, settings, [](const RenderSession &, const Progress &) {},
+                    [&](const RenderSession &session, const Progress &progress) {
+                        rows.push_back(sampleState(session, "uniform", seed, spp, progress, evaluator));
                         report(rows.back());
                         if (rows.back().minSpp != spp || rows.back().maxSpp != spp)
-                            std::fprintf(stderr, "mvcl-bench: warning: Fixed %d spp ended with %d..%d samples per pixel\n",
+                            std::fprintf(stderr,
+                                         "mvcl-bench: warning: Fixed %d spp ended with %d..%d samples per pixel\n",
                                          spp, rows.back().minSpp, rows.back().maxSpp);
                     });
             }
@@ -569,10 +596,10 @@ int runConvergenceBench(int argc, char **argv) {
                 settings.seed = seed;
                 runSession(
                     setup, settings,
-                    [&](const RenderSession &session, int pass, double seconds) {
-                        rows.push_back(sampleState(session, method, seed, pass, seconds, evaluator));
+                    [&](const RenderSession &session, const Progress &progress) {
+                        rows.push_back(sampleState(session, method, seed, progress.passes, progress, evaluator));
                     },
-                    [&](const RenderSession &, int, double) { report(rows.back()); });
+                    [&](const RenderSession &, const Progress &) { report(rows.back()); });
             }
         }
 
@@ -581,7 +608,7 @@ int runConvergenceBench(int argc, char **argv) {
 
         std::map<std::string, std::vector<Measurement>> means;
         for (const char *method : {"uniform", "progressive", "adaptive"})
-            means[method] = meanOverSeeds(rows, method, o.seeds);
+            means[method] = meanOverSeeds(rows, method);
         printTable(means);
         std::printf("\nwrote      %s (%zu measurements)\n", csv.c_str(), rows.size());
 
@@ -592,24 +619,39 @@ int runConvergenceBench(int argc, char **argv) {
             throw Error("convergence", "missing measurements");
         std::printf("reference  own relMSE %.3e is %.2g%% of uniform's final relMSE %.3e\n", ref.ownRelMse,
                     100.0 * ref.ownRelMse / finalUniform->relMse, finalUniform->relMse);
-        auto lowest = [](const std::vector<Measurement> &curve) {
-            return *std::min_element(curve.begin(), curve.end(),
-                                     [](const Measurement &a, const Measurement &b) { return a.relMse < b.relMse; });
-        };
-        bool reached = false;
-        const std::string progressive = crossingText(means["progressive"], *finalUniform, reached);
-        const Measurement progressiveBest = lowest(means["progressive"]);
-        std::printf("progressive at uniform's final relMSE: %s× uniform's time", progressive.c_str());
-        if (!reached)
-            std::printf(" (never reached it: lowest relMSE %.3e after %.3f s)", progressiveBest.relMse,
-                        progressiveBest.seconds);
+        // Time to reach uniform's relMSE at each of its spp levels, over uniform's time there.
+        std::printf("\ntime to reach uniform's relMSE at its spp, over uniform's time (mean curves, log-log)\n%-12s",
+                    "spp");
+        for (const Measurement &u : uniform) std::printf(" %7d", u.step);
         std::printf("\n");
-        const std::string adaptive = crossingText(means["adaptive"], *finalUniform, reached);
-        const Measurement adaptiveBest = lowest(means["adaptive"]);
-        std::printf("%s: adaptive reaches uniform's final error in %s× the time", name.c_str(), adaptive.c_str());
-        if (!reached)
-            std::printf(" (it never does: lowest relMSE %.3e after %.3f s; the bound is its total time)",
-                        adaptiveBest.relMse, adaptiveBest.seconds);
+        for (const char *method : {"progressive", "adaptive"}) {
+            std::printf("%-12s", method);
+            for (const Measurement &u : uniform) {
+                bool reached = false;
+                std::printf(" %7s", crossingText(means[method], u, reached).c_str());
+            }
+            std::printf("\n");
+        }
+
+        const std::vector<Measurement> &adaptiveMean = means["adaptive"];
+        const Measurement best = *std::min_element(
+            adaptiveMean.begin(), adaptiveMean.end(),
+            [](const Measurement &a, const Measurement &b) { return a.relMse < b.relMse; });
+        bool reached = false;
+        const std::string ratio = crossingText(adaptiveMean, *finalUniform, reached);
+        std::printf("\n%s: adaptive reaches uniform's final error in %s× the time", name.c_str(), ratio.c_str());
+        if (!reached) {
+            // Adaptive takes the same samples as uniform, only fewer of them where it stopped, so
+            // its final error is uniform's plus what the stopped pixels still lack: say how close.
+            Measurement withinOnePercent = *finalUniform;
+            withinOnePercent.relMse *= 1.01;
+            bool nearlyReached = false;
+            const std::string nearly = crossingText(adaptiveMean, withinOnePercent, nearlyReached);
+            std::printf(" (it never does: its lowest relMSE, %.4e after %.3f s, is %.2g%% above uniform's %.4e; "
+                        "the bound is its total time; within 1%%: %s×)",
+                        best.relMse, best.seconds, 100.0 * (best.relMse / finalUniform->relMse - 1.0),
+                        finalUniform->relMse, nearly.c_str());
+        }
         std::printf("\n");
         return 0;
     } catch (const Error &e) {

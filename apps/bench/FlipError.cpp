@@ -239,10 +239,9 @@ std::vector<float> FlipReference::errorMap(const Framebuffer &test) const {
         // Small differences spread over [0, p_t], the rest compressed into [p_t, 1].
         const double colour = distance < knee ? kPt / knee * distance
                                               : kPt + (distance - knee) / (cmax - knee) * (1.0 - kPt);
-        const double feature =
-            std::pow(std::max(std::fabs(double(r.edges[i]) - t.edges[i]), std::fabs(double(r.points[i]) - t.points[i])) /
-                         std::numbers::sqrt2,
-                     kQf);
+        const double edges = std::fabs(double(r.edges[i]) - t.edges[i]);
+        const double points = std::fabs(double(r.points[i]) - t.points[i]);
+        const double feature = std::pow(std::max(edges, points) / std::numbers::sqrt2, kQf);
         error[i] = float(std::pow(colour, 1.0 - feature));
     }
     return error;

@@ -88,7 +88,8 @@ TEST(FlipError, BlackAgainstWhiteFollowsTheColourMapping) {
     // sRGB green (L*a*b* 87.737, −86.185, 83.181) and blue (32.303, 79.197, −107.864).
     const double green[3] = {87.737, -86.185 * 0.87737, 83.181 * 0.87737};
     const double blue[3] = {32.303, 79.197 * 0.32303, -107.864 * 0.32303};
-    const double cmax = std::pow(std::fabs(green[0] - blue[0]) + std::hypot(green[1] - blue[1], green[2] - blue[2]), 0.7);
+    const double cmax =
+        std::pow(std::fabs(green[0] - blue[0]) + std::hypot(green[1] - blue[1], green[2] - blue[2]), 0.7);
     const double distance = std::pow(100.0, 0.7);
     ASSERT_GT(distance, 0.4 * cmax); // in the compressed upper part of the range
     const double expected = 0.95 + (distance - 0.4 * cmax) / (cmax - 0.4 * cmax) * 0.05;
@@ -103,7 +104,8 @@ TEST(FlipError, SmallFlatDifferencesUseTheLinearPart) {
     auto lightness = [](double y) { return 116.0 * std::cbrt(y) - 16.0; }; // y > (6/29)³
     const double green[3] = {87.737, -86.185 * 0.87737, 83.181 * 0.87737};
     const double blue[3] = {32.303, 79.197 * 0.32303, -107.864 * 0.32303};
-    const double cmax = std::pow(std::fabs(green[0] - blue[0]) + std::hypot(green[1] - blue[1], green[2] - blue[2]), 0.7);
+    const double cmax =
+        std::pow(std::fabs(green[0] - blue[0]) + std::hypot(green[1] - blue[1], green[2] - blue[2]), 0.7);
     const double expected = 0.95 / (0.4 * cmax) * std::pow(lightness(0.52) - lightness(0.5), 0.7);
     EXPECT_NEAR(flipError(b, a), expected, 2e-3);
 }
