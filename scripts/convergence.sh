@@ -19,8 +19,8 @@ if ! /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then
 fi
 
 size="${MVCL_CONVERGENCE_SIZE:-320x240}"
-max_spp="${MVCL_CONVERGENCE_MAX_SPP:-256}"
-reference_spp="${MVCL_CONVERGENCE_REFERENCE_SPP:-4096}"
+max_spp="${MVCL_CONVERGENCE_MAX_SPP:-128}"
+reference_spp="${MVCL_CONVERGENCE_REFERENCE_SPP:-2048}"
 start=$(date +%s)
 for scene in cube-in-cube HRA_Female_Body 2CylinderEngine; do
   echo "== $scene" >&2

@@ -33,17 +33,19 @@ def read_rows(paths):
 
 
 def curves(rows, metric):
-    """{method: [(mean seconds, mean error, min error, max error)]} over the steps all seeds have."""
-    by_method = defaultdict(lambda: defaultdict(dict))  # method -> seed -> step -> row
+    """{method: [(mean seconds, mean error, min error, max error)]}, point by point (uniform: its
+    spp levels, the others: their passes). As in the bench's table, a run that went idle before
+    the others keeps its final state, so every point averages all seeds."""
+    by_method = defaultdict(lambda: defaultdict(list))  # method -> seed -> rows in step order
     for r in rows:
         if r["method"] != "reference":
-            by_method[r["method"]][r["seed"]][int(r["step"])] = r
+            by_method[r["method"]][r["seed"]].append(r)
     result = {}
     for method, seeds in by_method.items():
-        common = set.intersection(*(set(steps) for steps in seeds.values()))
+        runs = [sorted(run, key=lambda r: int(r["step"])) for run in seeds.values()]
         points = []
-        for step in sorted(common):
-            group = [seeds[s][step] for s in seeds]
+        for k in range(max(len(run) for run in runs)):
+            group = [run[min(k, len(run) - 1)] for run in runs]
             errors = [float(g[metric]) for g in group]
             seconds = sum(float(g["seconds"]) for g in group) / len(group)
             points.append((seconds, sum(errors) / len(errors), min(errors), max(errors)))
@@ -65,7 +67,7 @@ def plot_scene(scene, rows, out_dir):
             t = [p[0] for p in points]
             ax.fill_between(t, [p[2] for p in points], [p[3] for p in points], color=colour, alpha=0.2, lw=0)
             ax.plot(t, [p[1] for p in points], color=colour, lw=1.6,
-                    marker="o" if method == "uniform" else None, ms=3.5, label=method)
+                    marker="o" if method == "uniform" else ".", ms=3.5 if method == "uniform" else 3, label=method)
             if method == "uniform":
                 final = points[-1][1]
                 ax.axhline(final, color=colour, ls="--", lw=0.8)
