@@ -74,16 +74,21 @@ def plot_scene(scene, rows, out_dir):
                 if metric == "relmse":
                     uniform_final = final
         if reference and reference[0][metric]:
+            # The reference's own error: a dotted floor when it comes near the curves, else only
+            # its value in the legend (a line decades below would squash the curves).
             floor = float(reference[0][metric])
-            if floor > 0:
-                ax.axhline(floor, color="0.45", ls=":", lw=1.0,
-                           label="reference's own error (%s spp)" % reference[0]["step"])
+            lowest = min((p[2] for points in data.values() for p in points if p[2] > 0), default=0.0)
+            text = "reference's own error %.2g (%s spp)" % (floor, reference[0]["step"])
+            if floor > 0.1 * lowest:
+                ax.axhline(floor, color="0.45", ls=":", lw=1.0, label=text)
+            else:
+                ax.plot([], [], " ", label=text)
+        ax.legend(loc="upper right", fontsize=8)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("wall time of the passes (s)")
         ax.set_ylabel(label)
         ax.grid(True, which="both", alpha=0.25)
-    axes[0].legend(loc="lower left", fontsize=8)
     size = ""
     u = [r for r in rows if r["method"] == "uniform"]
     if u:
