@@ -20,7 +20,7 @@ fi
 
 size="${MVCL_CONVERGENCE_SIZE:-320x240}"
 max_spp="${MVCL_CONVERGENCE_MAX_SPP:-128}"
-reference_spp="${MVCL_CONVERGENCE_REFERENCE_SPP:-2048}"
+reference_spp="${MVCL_CONVERGENCE_REFERENCE_SPP:-1024}"
 start=$(date +%s)
 for scene in cube-in-cube HRA_Female_Body 2CylinderEngine; do
   echo "== $scene" >&2
