@@ -7,8 +7,10 @@
 //   mvcl-bench [model.glb | builtin:<name>] [--size WxH] [--threads N] [--repeat R]
 //              [--embree-config OPTIONS]   (extra rtcNewDevice options, e.g. tri_accel=bvh4.triangle4)
 //   (exit 2 for bad arguments, 1 when the model does not load)
+//   mvcl-bench convergence ...             (error against run time: ConvergenceBench.cpp)
 
 #include "CommandLineValues.h"
+#include "ConvergenceBench.h"
 
 #include <mvcl/core/WorkerPool.h>
 #include <mvcl/model/BuiltinScenes.h>
@@ -223,6 +225,7 @@ void printRow(const char *what, double ours, double embree, const char *unit, bo
 } // namespace
 
 int main(int argc, char **argv) {
+    if (argc > 1 && std::string(argv[1]) == "convergence") return mvcl::bench::runConvergenceBench(argc - 1, argv + 1);
     std::optional<Options> options;
     try {
         options = parseOptions(argc, argv);
