@@ -132,8 +132,11 @@ struct RenderSession::Private {
         uint32_t minCount = 0, maxCount = 0;
         uint64_t countSum = 0;
         double errorSum = 0.0;
-        float maxError = 0.f;
+        float maxError = 0.f;   ///< of the pixels with an estimate (≥ 2 samples)
+        float worstError = 0.f; ///< of all pixels, +∞ if one has no estimate yet
         uint32_t withError = 0, activeCount = 0;
+        /// Active pixels off the tile's border: their dilation reads this tile's estimates only.
+        uint32_t interiorActive = 0, interiorFewest = 0;
     };
     std::vector<TileSummary> tileSummaries;
     Framebuffer display;
@@ -178,6 +181,9 @@ struct RenderSession::Private {
     bool wantsSamples(int x, int y) const;
     void updateActive(const PixelRect &area);
     void updateActiveTiles(const std::vector<int> &tiles);
+    void summariseTile(int tile);
+    void finishTile(int tile);
+    void stopWhenConverged();
     uint32_t minActiveCount() const;
     bool timeIsUp() const {
         return settings.sampling != SamplingMode::Fixed && settings.timeLimitSeconds > 0.0 &&
@@ -293,36 +299,73 @@ void RenderSession::Private::updateActive(const PixelRect &area) {
 }
 
 void RenderSession::Private::updateActiveTiles(const std::vector<int> &tiles) {
+    parallelFor(tiles.size(), threads(), [&](size_t k) { summariseTile(tiles[k]); });
+    parallelFor(tiles.size(), threads(), [&](size_t k) { finishTile(tiles[k]); });
+    stopWhenConverged();
+}
+
+void RenderSession::Private::summariseTile(int tile) {
     const int w = width();
-    parallelFor(tiles.size(), threads(), [&](size_t k) {
-        const PixelRect r = tileRect(tiles[k]);
-        uint32_t fewest = kNoActivePixel;
-        TileSummary summary;
-        summary.minCount = kNoActivePixel;
-        for (int y = r.y0; y < r.y1; ++y)
-            for (int x = r.x0; x < r.x1; ++x) {
-                const size_t i = size_t(y) * size_t(w) + size_t(x);
-                active[i] = wantsSamples(x, y);
-                const uint32_t count = samples[i].count;
-                if (active[i]) {
-                    fewest = std::min(fewest, count);
-                    ++summary.activeCount;
-                }
-                summary.minCount = std::min(summary.minCount, count);
-                summary.maxCount = std::max(summary.maxCount, count);
-                summary.countSum += count;
-                if (count >= 2) {
-                    summary.errorSum += errors[i];
-                    summary.maxError = std::max(summary.maxError, errors[i]);
-                    ++summary.withError;
-                }
+    const PixelRect r = tileRect(tile);
+    TileSummary summary;
+    summary.minCount = kNoActivePixel;
+    summary.interiorFewest = kNoActivePixel;
+    for (int y = r.y0; y < r.y1; ++y) {
+        const bool borderRow = y == r.y0 || y == r.y1 - 1;
+        for (int x = r.x0; x < r.x1; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            const uint32_t count = samples[i].count;
+            summary.minCount = std::min(summary.minCount, count);
+            summary.maxCount = std::max(summary.maxCount, count);
+            summary.countSum += count;
+            summary.worstError = std::max(summary.worstError, errors[i]);
+            if (count >= 2) {
+                summary.errorSum += errors[i];
+                summary.maxError = std::max(summary.maxError, errors[i]);
+                ++summary.withError;
             }
-        tileMinCount[size_t(tiles[k])] = fewest;
-        tileSummaries[size_t(tiles[k])] = summary;
-    });
+            if (borderRow || x == r.x0 || x == r.x1 - 1) continue;
+            active[i] = wantsSamples(x, y);
+            if (active[i]) {
+                summary.interiorFewest = std::min(summary.interiorFewest, count);
+                ++summary.interiorActive;
+            }
+        }
+    }
+    tileSummaries[size_t(tile)] = summary;
+}
+
+void RenderSession::Private::finishTile(int tile) {
+    const int w = width();
+    const PixelRect r = tileRect(tile);
+    TileSummary &summary = tileSummaries[size_t(tile)];
+    uint32_t fewest = summary.interiorFewest;
+    uint32_t activeCount = summary.interiorActive;
+    auto visit = [&](int x, int y) {
+        const size_t i = size_t(y) * size_t(w) + size_t(x);
+        active[i] = wantsSamples(x, y);
+        if (active[i]) {
+            fewest = std::min(fewest, samples[i].count);
+            ++activeCount;
+        }
+    };
+    for (int y = r.y0; y < r.y1; ++y) {
+        if (y == r.y0 || y == r.y1 - 1) {
+            for (int x = r.x0; x < r.x1; ++x) visit(x, y);
+        } else {
+            visit(r.x0, y);
+            if (r.x1 - 1 > r.x0) visit(r.x1 - 1, y);
+        }
+    }
+    summary.activeCount = activeCount;
+    tileMinCount[size_t(tile)] = fewest;
+}
+
+void RenderSession::Private::stopWhenConverged() {
     if (settings.sampling == SamplingMode::Progressive && settings.targetError > 0.f) {
         // Progressive stops as a whole once no pixel's estimate is above the target.
-        const float worst = *std::max_element(errors.begin(), errors.end());
+        float worst = 0.f;
+        for (const TileSummary &t : tileSummaries) worst = std::max(worst, t.worstError);
         if (worst <= settings.targetError) std::fill(tileMinCount.begin(), tileMinCount.end(), kNoActivePixel);
     }
     needsSamples = minActiveCount() != kNoActivePixel && !timeIsUp();
@@ -382,6 +425,10 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
     const int w = width();
     const Clock::time_point start = Clock::now();
     parallelFor(work.size(), threads(), [&](size_t k) {
+        if (stopped.load(std::memory_order_relaxed) || cancel.load(std::memory_order_relaxed)) {
+            stopped = true;
+            return;
+        }
         detail::PixelTracer tracer(integrator, camera, map, settings.seed, stageSelectionOf(settings));
         const PixelRect r = tileRect(work[k]);
         uint64_t traced = 0;
@@ -407,6 +454,8 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
             }
         }
         tracer.endRun();
+        // While the tile is in this worker's cache; its border waits for the neighbours.
+        if (traced > 0) summariseTile(work[k]);
         std::lock_guard lock(merge);
         stats.rays += tracer.rays();
         stats.samples += tracer.samplesTaken();
@@ -435,7 +484,8 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
     std::vector<int> updateTiles;
     for (size_t t = 0; t < update.size(); ++t)
         if (update[t]) updateTiles.push_back(int(t));
-    updateActiveTiles(updateTiles);
+    parallelFor(updateTiles.size(), threads(), [&](size_t k) { finishTile(updateTiles[k]); });
+    stopWhenConverged();
     if (!stats.wasCancelled && fewest == 0 && stats.samples > 0) {
         // Thread-time per sample at full resolution: what sizes the next camera preview.
         const double perSample = stats.traceMilliseconds * 1e6 * double(threads()) / double(stats.samples);
