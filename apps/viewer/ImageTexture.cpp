@@ -31,13 +31,13 @@ void ImageTexture::update(const Framebuffer &image, const PixelRect &changed) {
     if (image.width() != m_width || image.height() != m_height) {
         m_width = image.width();
         m_height = image.height();
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, m_width, m_height, 0, GL_RGB, GL_UNSIGNED_BYTE, nullptr);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, m_width, m_height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
         rect = {0, 0, m_width, m_height};
     }
     rect = {std::max(rect.x0, 0), std::max(rect.y0, 0), std::min(rect.x1, m_width), std::min(rect.y1, m_height)};
     if (rect.isEmpty()) return;
     const int w = rect.x1 - rect.x0, h = rect.y1 - rect.y0;
-    m_staging.resize(size_t(w) * size_t(h) * 3);
+    m_staging.resize(size_t(w) * size_t(h) * 4);
     const float steps = float(m_srgb.size() - 1);
     uint8_t *out = m_staging.data();
     for (int y = rect.y0; y < rect.y1; ++y)
@@ -47,8 +47,10 @@ void ImageTexture::update(const Framebuffer &image, const PixelRect &changed) {
                 const float v = c[k] > 0.f ? std::min(c[k], 1.f) : 0.f; // NaN → 0
                 *out++ = m_srgb[size_t(v * steps + 0.5f)];
             }
+            *out++ = 255;
         }
-    glTexSubImage2D(GL_TEXTURE_2D, 0, rect.x0, rect.y0, w, h, GL_RGB, GL_UNSIGNED_BYTE, m_staging.data());
+    // RGBA: uploads of 8-bit RGBA into an RGBA8 texture are a plain copy in the drivers; RGB is converted.
+    glTexSubImage2D(GL_TEXTURE_2D, 0, rect.x0, rect.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, m_staging.data());
     m_lastUploadPixels = uint64_t(w) * uint64_t(h);
 }
 

@@ -108,7 +108,7 @@ screenshot FILE               the rendered image with lens outlines, no UI
 window-screenshot FILE        the whole window, panels included
 save-session FILE | load-session FILE | open MODEL
 expect-lenses N               fail (exit 1) unless the stack holds N lenses
-bench-begin NAME | bench-end  UI frame times between them, printed on stdout
+bench-begin NAME | bench-end  UI frame times between them (median, 95th percentile, worst) on stdout
 quit [CODE]                   exit with CODE (default 0)
 )";
 }

@@ -153,10 +153,13 @@ bool Viewer::runCommand(const ScriptCommand &c) {
     } else if (name == "bench-end") {
         std::vector<double> frames = m_benchFrames;
         std::sort(frames.begin(), frames.end());
-        if (!frames.empty())
-            std::printf("bench %s: %zu UI frames, median %.2f ms, worst %.2f ms per frame, %llu image updates\n",
-                        m_benchName.c_str(), frames.size(), frames[frames.size() / 2], frames.back(),
-                        (unsigned long long)m_benchImageUpdates);
+        if (!frames.empty()) {
+            const size_t worstFrame = size_t(std::max_element(m_benchFrames.begin(), m_benchFrames.end()) - m_benchFrames.begin());
+            std::printf("bench %s: %zu UI frames, median %.2f ms, 95th percentile %.2f ms, worst %.2f ms (frame %zu), "
+                        "%llu image updates\n",
+                        m_benchName.c_str(), frames.size(), frames[frames.size() / 2], frames[frames.size() * 95 / 100],
+                        frames.back(), worstFrame + 1, (unsigned long long)m_benchImageUpdates);
+        }
         std::fflush(stdout);
         m_benchName.clear();
     } else if (name == "quit") {
