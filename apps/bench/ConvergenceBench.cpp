@@ -22,6 +22,7 @@
 
 #include "ConvergenceBench.h"
 
+#include "CommandLineValues.h"
 #include "ConvergenceCurves.h"
 #include "FlipError.h"
 #include "ImageError.h"
@@ -84,66 +85,54 @@ struct Options {
 const char *kUsage =
     "usage: mvcl-bench convergence [model | builtin:NAME] [--lenses FILE] [--size WxH] [--seeds N]\n"
     "                              [--csv FILE] [--max-spp N] [--reference-spp N] [--threads N]\n"
-    "                              [--adaptive-error E] [--adaptive-min N] [--cache DIR] [--no-flip]\n"
-    "Without a model: builtin:cube-in-cube under assets/lenses/cube-in-cube.json (when found).\n";
+    "                              [--adaptive-error E] [--adaptive-min N] [--cache DIR] [--no-flip]";
 
-int positiveInt(const std::string &option, const std::string &text) {
-    try {
-        std::size_t used = 0;
-        const int v = std::stoi(text, &used);
-        if (used == text.size() && v >= 1) return v;
-    } catch (const std::exception &) {
-    }
-    throw Error("command line", option + " expects a whole number ≥ 1, got '" + text + "'");
-}
-
-Options parseOptions(int argc, char **argv) {
+/// The options, or nothing when --help was asked for (the help is printed).
+std::optional<Options> parseOptions(int argc, char **argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw Error("command line", a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "--size") {
-            const std::string v = value();
-            char end = 0;
-            if (std::sscanf(v.c_str(), "%dx%d%c", &o.width, &o.height, &end) != 2 || o.width < 1 || o.height < 1)
-                throw Error("command line", "--size expects WxH, got '" + v + "'");
-        } else if (a == "--lenses") {
-            o.lensFile = value();
-        } else if (a == "--seeds") {
-            o.seeds = positiveInt(a, value());
-        } else if (a == "--csv") {
-            o.csv = value();
-        } else if (a == "--max-spp") {
-            o.maxSpp = positiveInt(a, value());
-        } else if (a == "--reference-spp") {
-            o.referenceSpp = positiveInt(a, value());
-        } else if (a == "--threads") {
-            o.threads = positiveInt(a, value());
-        } else if (a == "--adaptive-error") {
-            const std::string v = value();
-            try {
-                o.adaptiveError = std::stof(v);
-            } catch (const std::exception &) {
-                throw Error("command line", "--adaptive-error expects a number, got '" + v + "'");
-            }
-            if (!(o.adaptiveError >= 0.f)) throw Error("command line", "--adaptive-error must be ≥ 0");
-        } else if (a == "--adaptive-min") {
-            o.adaptiveMin = std::max(2, positiveInt(a, value()));
-        } else if (a == "--cache") {
-            o.cacheDir = value();
-        } else if (a == "--no-flip") {
-            o.flip = false;
-        } else if (a == "--help" || a == "-h") {
-            std::fputs(kUsage, stdout);
-            std::exit(0);
-        } else if (!a.empty() && a[0] == '-') {
-            throw Error("command line", "unknown option '" + a + "'");
-        } else {
-            o.model = a;
-        }
+    CLI::App app("mvcl-bench convergence: error against run time of uniform, progressive and adaptive sampling.",
+                 "mvcl-bench convergence");
+    app.formatter(std::make_shared<cli::UsageFormatter>(kUsage));
+    app.set_help_flag("-h,--help", "this text");
+    app.add_option("model", o.model,
+                   "model file or builtin:NAME (default: builtin:cube-in-cube under "
+                   "assets/lenses/cube-in-cube.json)")
+        ->option_text(" ");
+    app.add_option("--lenses", o.lensFile, "lens-stack file: lenses, camera, layer rules and (without a model) scene")
+        ->type_name("FILE");
+    app.add_option_function<std::string>(
+           "--size",
+           [&](const std::string &text) {
+               const glm::ivec2 size = cli::parseImageSize(text);
+               o.width = size.x;
+               o.height = size.y;
+           },
+           "image size (default 320x240)")
+        ->type_name("WxH")
+        ->check(cli::imageSize());
+    app.add_option("--seeds", o.seeds, "runs of each method, seeds 1..N (default 3)")
+        ->type_name("N")
+        ->check(cli::wholeNumberIn(1, 1000));
+    app.add_option("--csv", o.csv, "where the measurements go (default out/convergence-<scene>.csv)")->type_name("FILE");
+    app.add_option("--max-spp", o.maxSpp, "uniform's largest spp and the others' cap (default 256)")
+        ->type_name("N")
+        ->check(cli::wholeNumberIn(1, 1 << 16));
+    app.add_option("--reference-spp", o.referenceSpp, "samples per pixel of each reference render (default 4096)")
+        ->type_name("N")
+        ->check(cli::wholeNumberIn(1, 1 << 20));
+    app.add_option("--threads", o.threads, "0 = all cores (default 0)")->type_name("N")->check(cli::wholeNumberIn(0, 1024));
+    app.add_option("--adaptive-error", o.adaptiveError, "Adaptive's target error, > 0 (default 1e-4)")
+        ->type_name("E")
+        ->check(cli::numberBetween(0.0, 1e30, "greater than 0"));
+    app.add_option("--adaptive-min", o.adaptiveMin, "Adaptive's samples before its estimate counts (default 8)")
+        ->type_name("N")
+        ->check(cli::wholeNumberIn(2, 1 << 16));
+    app.add_option("--cache", o.cacheDir, "folder of cached references (default out/convergence-cache)")
+        ->type_name("DIR");
+    app.add_flag_callback("--no-flip", [&] { o.flip = false; }, "leave FLIP out (it costs the most to compute)");
+    if (cli::parseCommandLine(app, std::vector<std::string>(argv + 1, argv + argc))) {
+        std::fputs(app.help().c_str(), stdout);
+        return std::nullopt;
     }
     return o;
 }
@@ -489,7 +478,9 @@ std::string crossingText(const std::vector<Measurement> &mean, const Measurement
 
 int runConvergenceBench(int argc, char **argv) {
     try {
-        Options o = parseOptions(argc, argv);
+        std::optional<Options> parsed = parseOptions(argc, argv);
+        if (!parsed) return 0;
+        Options &o = *parsed;
         LensRegistry registry;
         for (const Error &skipped : registry.loadModules(LensRegistry::defaultSearchPath()))
             std::fprintf(stderr, "mvcl-bench: warning: plugin skipped: %s\n", skipped.what());
