@@ -3,15 +3,18 @@
 //
 //   mvcl-bench convergence [model | builtin:NAME] [--lenses FILE] [--size WxH] [--seeds N]
 //                          [--csv FILE] [--max-spp N] [--reference-spp N] [--threads N]
-//                          [--adaptive-error E] [--adaptive-min N] [--cache DIR] [--no-flip]
+//                          [--adaptive-error E] [--adaptive-min N] [--adaptive-max-spp N]
+//                          [--cache DIR] [--no-flip]
 //
 // 1. A reference: two Fixed renders at --reference-spp with seeds no measurement uses, averaged.
 //    Half their RMS difference estimates the reference's own RMSE (each is off by σ, their
 //    difference by √2·σ, their mean by σ/√2). Cached on disk, keyed by everything it depends on.
 // 2. For each seed: uniform = Fixed renders at 1, 2, 4, … max-spp samples, each its own session;
 //    progressive = one Progressive session up to max-spp, measured after every pass;
-//    adaptive = one Adaptive session (targetError --adaptive-error, default 1e-4; 0 would turn
-//    the error test off) up to max-spp, measured after every pass.
+//    adaptive = one Adaptive session (targetError --adaptive-error, default 1e-5; 0 would turn
+//    the error test off) up to --adaptive-max-spp (default 8 × max-spp: spending more samples
+//    where the error is is what adaptive sampling is for), measured after every pass, stopped
+//    once its relMSE is below half of the same seed's uniform final relMSE.
 //    One RenderSession class does all three, so they share the sampler and the renderer.
 // 3. Time = wall clock of renderPass() calls only (never the error computation).
 //    Errors against the reference: RMSE, relMSE (ε = 0.01), PSNR (peak 1, clamped), LDR-FLIP.
@@ -75,9 +78,10 @@ struct Options {
     int referenceSpp = 4096;
     int threads = 0;
     /// Small, not 0: a target of 0 switches the error test off (RenderSettings), which makes
-    /// Adaptive sample exactly like Progressive. 1e-4 stops pixels whose samples agree.
-    float adaptiveError = 1e-4f;
+    /// Adaptive sample exactly like Progressive.
+    float adaptiveError = 1e-5f;
     int adaptiveMin = RenderSettings{}.minSamplesPerPixel;
+    int adaptiveMaxSpp = 0; ///< 0: 8 × maxSpp
     std::string cacheDir = "out/convergence-cache";
     bool flip = true;
 };
@@ -85,7 +89,8 @@ struct Options {
 const char *kUsage =
     "usage: mvcl-bench convergence [model | builtin:NAME] [--lenses FILE] [--size WxH] [--seeds N]\n"
     "                              [--csv FILE] [--max-spp N] [--reference-spp N] [--threads N]\n"
-    "                              [--adaptive-error E] [--adaptive-min N] [--cache DIR] [--no-flip]";
+    "                              [--adaptive-error E] [--adaptive-min N] [--adaptive-max-spp N]\n"
+    "                              [--cache DIR] [--no-flip]";
 
 /// The options, or nothing when --help was asked for (the help is printed).
 std::optional<Options> parseOptions(int argc, char **argv) {
@@ -121,12 +126,15 @@ std::optional<Options> parseOptions(int argc, char **argv) {
         ->type_name("N")
         ->check(cli::wholeNumberIn(1, 1 << 20));
     app.add_option("--threads", o.threads, "0 = all cores (default 0)")->type_name("N")->check(cli::wholeNumberIn(0, 1024));
-    app.add_option("--adaptive-error", o.adaptiveError, "Adaptive's target error, > 0 (default 1e-4)")
+    app.add_option("--adaptive-error", o.adaptiveError, "Adaptive's target error, > 0 (default 1e-5)")
         ->type_name("E")
         ->check(cli::numberBetween(0.0, 1e30, "greater than 0"));
     app.add_option("--adaptive-min", o.adaptiveMin, "Adaptive's samples before its estimate counts (default 8)")
         ->type_name("N")
         ->check(cli::wholeNumberIn(2, 1 << 16));
+    app.add_option("--adaptive-max-spp", o.adaptiveMaxSpp, "Adaptive's most samples per pixel (default 8 × --max-spp)")
+        ->type_name("N")
+        ->check(cli::wholeNumberIn(1, 1 << 20));
     app.add_option("--cache", o.cacheDir, "folder of cached references (default out/convergence-cache)")
         ->type_name("DIR");
     app.add_flag_callback("--no-flip", [&] { o.flip = false; }, "leave FLIP out (it costs the most to compute)");
@@ -134,6 +142,7 @@ std::optional<Options> parseOptions(int argc, char **argv) {
         std::fputs(app.help().c_str(), stdout);
         return std::nullopt;
     }
+    if (o.adaptiveMaxSpp == 0) o.adaptiveMaxSpp = 8 * o.maxSpp;
     return o;
 }
 
@@ -273,7 +282,7 @@ void runSession(const SceneSetup &setup, const RenderSettings &settings, OnPass 
         progress.seconds += elapsed;
         progress.samples += stats.samples;
         progress.rays += stats.rays.total();
-        onPass(session, progress);
+        if (!onPass(session, progress)) break;
     }
     atEnd(session, progress);
 }
@@ -311,7 +320,7 @@ Framebuffer renderFixed(const SceneSetup &setup, int spp, uint32_t seed, double 
     s.seed = seed;
     Framebuffer image;
     runSession(
-        setup, s, [](const RenderSession &, const Progress &) {},
+        setup, s, [](const RenderSession &, const Progress &) { return true; },
         [&](const RenderSession &session, const Progress &progress) {
             image = session.image();
             seconds = progress.seconds;
@@ -519,9 +528,9 @@ int runConvergenceBench(int argc, char **argv) {
                                                                    o.lensFile;
         std::printf("scene      %s (%zu triangles), %s\n", source.c_str(), tracer.buildStats().triangles,
                     lensText.c_str());
-        std::printf("view       %dx%d, %s threads; %d seeds, up to %d spp; adaptive: target error %g, min %d spp\n",
+        std::printf("view       %dx%d, %s threads; %d seeds, up to %d spp; adaptive: target error %g, %d to %d spp\n",
                     o.width, o.height, o.threads ? std::to_string(o.threads).c_str() : "all", o.seeds, o.maxSpp,
-                    double(o.adaptiveError), o.adaptiveMin);
+                    double(o.adaptiveError), o.adaptiveMin, o.adaptiveMaxSpp);
 
         // Everything the reference depends on.
         const bool isFile = source.rfind("builtin:", 0) != 0;
@@ -560,16 +569,18 @@ int runConvergenceBench(int argc, char **argv) {
         // three methods alike.
         for (int s = 1; s <= o.seeds; ++s) {
             const uint32_t seed = uint32_t(s);
+            double uniformFinal = 0.0; // this seed's relMSE at uniformFinalSpp
             for (int spp = 1; spp <= o.maxSpp; spp *= 2) {
                 RenderSettings settings = setup.base;
                 settings.sampling = SamplingMode::Fixed;
                 settings.samplesPerPixel = spp;
                 settings.seed = seed;
                 runSession(
-                    setup, settings, [](const RenderSession &, const Progress &) {},
+                    setup, settings, [](const RenderSession &, const Progress &) { return true; },
                     [&](const RenderSession &session, const Progress &progress) {
                         rows.push_back(sampleState(session, "uniform", seed, spp, progress, evaluator));
                         report(rows.back());
+                        if (spp == uniformFinalSpp) uniformFinal = rows.back().relMse;
                         if (rows.back().minSpp != spp || rows.back().maxSpp != spp)
                             std::fprintf(stderr,
                                          "mvcl-bench: warning: Fixed %d spp ended with %d..%d samples per pixel\n",
@@ -581,14 +592,18 @@ int runConvergenceBench(int argc, char **argv) {
                 RenderSettings settings = setup.base;
                 settings.sampling = mode;
                 settings.samplesPerPixel = 1;
-                settings.maxSamplesPerPixel = o.maxSpp;
+                const bool adaptive = mode == SamplingMode::Adaptive;
+                settings.maxSamplesPerPixel = adaptive ? o.adaptiveMaxSpp : o.maxSpp;
                 settings.minSamplesPerPixel = o.adaptiveMin;
-                settings.targetError = mode == SamplingMode::Adaptive ? o.adaptiveError : 0.f;
+                settings.targetError = adaptive ? o.adaptiveError : 0.f;
                 settings.seed = seed;
                 runSession(
                     setup, settings,
                     [&](const RenderSession &session, const Progress &progress) {
                         rows.push_back(sampleState(session, method, seed, progress.passes, progress, evaluator));
+                        // Past uniform's final error with a margin, adaptive's curve has shown
+                        // what R needs; its samples up to the cap would only cost bench time.
+                        return !adaptive || rows.back().relMse > 0.5 * uniformFinal;
                     },
                     [&](const RenderSession &, const Progress &) { report(rows.back()); });
             }

@@ -337,6 +337,61 @@ TEST_F(RenderSessionTest, AdaptiveSamplingConvergesToTheReferenceWithFewerSample
         << "adaptive is no better than uniform sampling with as many samples";
 }
 
+TEST_F(RenderSessionTest, AdaptivePassesServeTheHighestPrioritiesFirstAndDoubleTheirSamples) {
+    // Past the minimum, a pass serves exactly the pixels whose priority (dilated estimate² /
+    // samples) is within a factor 4 of the highest, and each of them doubles its samples.
+    const Scene scene = loadScene("builtin:cube-in-cube");
+    const Tracer tracer(scene);
+    const Camera camera = Camera::fromDesc(scene.cameras.front());
+    RenderSettings adaptive = smallSettings(64, 48, 1);
+    adaptive.sampling = SamplingMode::Adaptive;
+    adaptive.maxSamplesPerPixel = 512;
+    adaptive.targetError = 1e-3f;
+    RenderSession session(tracer);
+    session.setSettings(adaptive);
+    session.setCamera(camera);
+    while (session.convergence().minSamples < adaptive.minSamplesPerPixel) session.renderPass();
+
+    const int w = adaptive.width, h = adaptive.height;
+    int passesChecked = 0;
+    std::vector<uint32_t> bandSizes;
+    for (int pass = 0; pass < 12 && session.hasWork(); ++pass) {
+        const std::vector<uint32_t> before = session.sampleCounts();
+        const std::vector<float> errors = session.errorEstimates();
+        std::vector<float> priority(before.size(), 0.f);
+        float top = 0.f;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const size_t i = size_t(y) * size_t(w) + size_t(x);
+                if (before[i] >= uint32_t(adaptive.maxSamplesPerPixel)) continue;
+                float worst = 0.f;
+                for (int ny = std::max(y - 1, 0); ny <= std::min(y + 1, h - 1); ++ny)
+                    for (int nx = std::max(x - 1, 0); nx <= std::min(x + 1, w - 1); ++nx)
+                        worst = std::max(worst, errors[size_t(ny) * size_t(w) + size_t(nx)]);
+                if (worst > adaptive.targetError) priority[i] = worst * worst / float(before[i]);
+                top = std::max(top, priority[i]);
+            }
+        if (top == 0.f) break;
+        session.renderPass();
+        const std::vector<uint32_t> after = session.sampleCounts();
+        uint32_t served = 0;
+        for (size_t i = 0; i < after.size(); ++i) {
+            const bool inBand = priority[i] >= top / 4.f;
+            const uint32_t expected =
+                inBand ? std::min(uint32_t(adaptive.maxSamplesPerPixel), before[i] + std::min(before[i], 64u)) : before[i];
+            ASSERT_EQ(after[i], expected) << "pass " << pass << ", pixel " << i << ": priority " << priority[i]
+                                          << ", highest " << top;
+            served += inBand;
+        }
+        bandSizes.push_back(served);
+        ++passesChecked;
+    }
+    EXPECT_GE(passesChecked, 4);
+    // The band is a small part of the image at first and widens as the priorities fall.
+    ASSERT_FALSE(bandSizes.empty());
+    EXPECT_LT(bandSizes.front(), uint32_t(w * h / 4));
+}
+
 TEST_F(RenderSessionTest, ImageIsTheSameForOneTwoAndFiveThreads) {
     const Scene scene = loadScene("builtin:cube-in-cube");
     const Tracer tracer(scene);

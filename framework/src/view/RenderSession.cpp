@@ -28,6 +28,10 @@ constexpr uint32_t kNoActivePixel = std::numeric_limits<uint32_t>::max();
 /// Refinement adds at most this many samples per pixel in one pass, so passes stay short
 /// enough for the display to update and for a time limit to be met closely.
 constexpr uint32_t kMaxSamplesPerPass = 64;
+/// Adaptive refinement serves, in one pass, the pixels whose priority is within this factor of
+/// the highest: each doubles its samples, which divides its priority by about 4, so the band
+/// moves down pass by pass much as a greedy one-sample-at-a-time schedule would.
+constexpr float kPriorityBand = 4.f;
 /// A preview aims at this share of its budget, so that frames stay under it despite jitter.
 constexpr double kPreviewBudgetShare = 0.8;
 
@@ -122,10 +126,17 @@ struct RenderSession::Private {
     PolicyMap map{1, 1};
     std::vector<detail::PixelSamples> samples;
     std::vector<float> errors;
-    std::vector<uint8_t> active;   ///< the pixel wants more samples
+    /// Per pixel, what one more sample is worth: 0, it wants no more; +∞, it wants them whatever
+    /// its estimate ("urgent": below the minimum, or not Adaptive); else (Adaptive) its dilated
+    /// estimate e squared over its sample count n. With e² ≈ σ²/n, one more sample cuts the
+    /// pixel's expected squared error σ²/n by about σ²/n² ≈ e²/n, so serving the highest first spends samples where
+    /// they cut the image's error most (samples end up about proportional to a pixel's standard
+    /// deviation, the allocation that minimises the summed squared error for a sample budget).
+    std::vector<float> priority;
     std::vector<uint8_t> changed;  ///< scratch: pixels whose policy changed
     int tilesX = 0, tilesY = 0;
-    std::vector<uint32_t> tileMinCount; ///< fewest samples of an active pixel, or kNoActivePixel
+    std::vector<uint32_t> tileFewestUrgent; ///< fewest samples of an urgent pixel, or kNoActivePixel
+    std::vector<float> tileTopPriority;     ///< highest finite priority in the tile, 0 if none
     /// Per tile, what ConvergenceStats sums: kept up to date wherever active flags are, so the
     /// image's stats are a reduction over tiles, not pixels.
     struct TileSummary {
@@ -135,8 +146,9 @@ struct RenderSession::Private {
         float maxError = 0.f;   ///< of the pixels with an estimate (≥ 2 samples)
         float worstError = 0.f; ///< of all pixels, +∞ if one has no estimate yet
         uint32_t withError = 0, activeCount = 0;
-        /// Active pixels off the tile's border: their dilation reads this tile's estimates only.
-        uint32_t interiorActive = 0, interiorFewest = 0;
+        /// Pixels off the tile's border: their dilation reads this tile's estimates only.
+        uint32_t interiorActive = 0, interiorFewestUrgent = 0;
+        float interiorTopPriority = 0.f;
     };
     std::vector<TileSummary> tileSummaries;
     Framebuffer display;
@@ -178,13 +190,15 @@ struct RenderSession::Private {
     void resize();
     void restartPixels(const PixelRect &area, const std::vector<uint8_t> *only);
     uint32_t samplesWanted() const;
-    bool wantsSamples(int x, int y) const;
+    float priorityOf(int x, int y) const;
     void updateActive(const PixelRect &area);
     void updateActiveTiles(const std::vector<int> &tiles);
     void summariseTile(int tile);
     void finishTile(int tile);
     void stopWhenConverged();
-    uint32_t minActiveCount() const;
+    uint32_t fewestUrgent() const;
+    float topPriority() const;
+    bool hasActivePixels() const { return fewestUrgent() != kNoActivePixel || topPriority() > 0.f; }
     bool timeIsUp() const {
         return settings.sampling != SamplingMode::Fixed && settings.timeLimitSeconds > 0.0 &&
                std::chrono::duration<double>(Clock::now() - resetTime).count() >= settings.timeLimitSeconds;
@@ -217,7 +231,7 @@ ConvergenceStats RenderSession::Private::summarise() const {
     c.meanError = withError ? errorSum / double(withError) : 0.0;
     c.elapsedSeconds = std::chrono::duration<double>(Clock::now() - resetTime).count();
     c.isConverged = !needsSamples.load();
-    if (!c.isConverged && minActiveCount() == kNoActivePixel) c.activePixels = 0;
+    if (!c.isConverged && !hasActivePixels()) c.activePixels = 0;
     return c;
 }
 
@@ -239,12 +253,13 @@ void RenderSession::Private::resize() {
     const size_t n = pixelCount();
     samples.assign(n, {});
     errors.assign(n, INFINITY);
-    active.assign(n, 1);
+    priority.assign(n, INFINITY);
     changed.assign(n, 0);
     tilesX = (width() + settings.tileSize - 1) / settings.tileSize;
     tilesY = (height() + settings.tileSize - 1) / settings.tileSize;
-    tileMinCount.assign(size_t(tilesX) * size_t(tilesY), 0);
-    tileSummaries.assign(tileMinCount.size(), {});
+    tileFewestUrgent.assign(size_t(tilesX) * size_t(tilesY), 0);
+    tileTopPriority.assign(tileFewestUrgent.size(), 0.f);
+    tileSummaries.assign(tileFewestUrgent.size(), {});
     display = Framebuffer(width(), height());
 }
 
@@ -266,24 +281,26 @@ uint32_t RenderSession::Private::samplesWanted() const {
     return uint32_t(settings.sampling == SamplingMode::Fixed ? settings.samplesPerPixel : settings.maxSamplesPerPixel);
 }
 
-bool RenderSession::Private::wantsSamples(int x, int y) const {
+float RenderSession::Private::priorityOf(int x, int y) const {
     const size_t i = size_t(y) * size_t(width()) + size_t(x);
     const uint32_t count = samples[i].count;
-    if (count >= samplesWanted()) return false;
-    if (settings.sampling != SamplingMode::Adaptive || settings.targetError <= 0.f) return true;
-    if (count < uint32_t(settings.minSamplesPerPixel)) return true;
+    if (count >= samplesWanted()) return 0.f;
+    if (settings.sampling != SamplingMode::Adaptive || settings.targetError <= 0.f) return INFINITY;
+    if (count < uint32_t(settings.minSamplesPerPixel)) return INFINITY;
     // Dilated: a pixel next to one whose estimate is above the target keeps sampling, so that
     // an edge whose pixels happened to agree so far is not left behind.
+    float worst = 0.f;
     for (int dy = -1; dy <= 1; ++dy) {
         const int ny = y + dy;
         if (ny < 0 || ny >= height()) continue;
         for (int dx = -1; dx <= 1; ++dx) {
             const int nx = x + dx;
             if (nx < 0 || nx >= width()) continue;
-            if (errors[size_t(ny) * size_t(width()) + size_t(nx)] > settings.targetError) return true;
+            worst = std::max(worst, errors[size_t(ny) * size_t(width()) + size_t(nx)]);
         }
     }
-    return false;
+    if (worst <= settings.targetError) return 0.f;
+    return worst * worst / float(count); // +∞ next to a pixel without an estimate: it waits for it
 }
 
 void RenderSession::Private::updateActive(const PixelRect &area) {
@@ -309,7 +326,7 @@ void RenderSession::Private::summariseTile(int tile) {
     const PixelRect r = tileRect(tile);
     TileSummary summary;
     summary.minCount = kNoActivePixel;
-    summary.interiorFewest = kNoActivePixel;
+    summary.interiorFewestUrgent = kNoActivePixel;
     for (int y = r.y0; y < r.y1; ++y) {
         const bool borderRow = y == r.y0 || y == r.y1 - 1;
         for (int x = r.x0; x < r.x1; ++x) {
@@ -325,11 +342,10 @@ void RenderSession::Private::summariseTile(int tile) {
                 ++summary.withError;
             }
             if (borderRow || x == r.x0 || x == r.x1 - 1) continue;
-            active[i] = wantsSamples(x, y);
-            if (active[i]) {
-                summary.interiorFewest = std::min(summary.interiorFewest, count);
-                ++summary.interiorActive;
-            }
+            const float p = priority[i] = priorityOf(x, y);
+            if (p > 0.f) ++summary.interiorActive;
+            if (p == INFINITY) summary.interiorFewestUrgent = std::min(summary.interiorFewestUrgent, count);
+            else summary.interiorTopPriority = std::max(summary.interiorTopPriority, p);
         }
     }
     tileSummaries[size_t(tile)] = summary;
@@ -339,15 +355,15 @@ void RenderSession::Private::finishTile(int tile) {
     const int w = width();
     const PixelRect r = tileRect(tile);
     TileSummary &summary = tileSummaries[size_t(tile)];
-    uint32_t fewest = summary.interiorFewest;
+    uint32_t fewest = summary.interiorFewestUrgent;
     uint32_t activeCount = summary.interiorActive;
+    float top = summary.interiorTopPriority;
     auto visit = [&](int x, int y) {
         const size_t i = size_t(y) * size_t(w) + size_t(x);
-        active[i] = wantsSamples(x, y);
-        if (active[i]) {
-            fewest = std::min(fewest, samples[i].count);
-            ++activeCount;
-        }
+        const float p = priority[i] = priorityOf(x, y);
+        if (p > 0.f) ++activeCount;
+        if (p == INFINITY) fewest = std::min(fewest, samples[i].count);
+        else top = std::max(top, p);
     };
     for (int y = r.y0; y < r.y1; ++y) {
         if (y == r.y0 || y == r.y1 - 1) {
@@ -358,7 +374,8 @@ void RenderSession::Private::finishTile(int tile) {
         }
     }
     summary.activeCount = activeCount;
-    tileMinCount[size_t(tile)] = fewest;
+    tileFewestUrgent[size_t(tile)] = fewest;
+    tileTopPriority[size_t(tile)] = top;
 }
 
 void RenderSession::Private::stopWhenConverged() {
@@ -366,13 +383,18 @@ void RenderSession::Private::stopWhenConverged() {
         // Progressive stops as a whole once no pixel's estimate is above the target.
         float worst = 0.f;
         for (const TileSummary &t : tileSummaries) worst = std::max(worst, t.worstError);
-        if (worst <= settings.targetError) std::fill(tileMinCount.begin(), tileMinCount.end(), kNoActivePixel);
+        if (worst <= settings.targetError) std::fill(tileFewestUrgent.begin(), tileFewestUrgent.end(), kNoActivePixel);
     }
-    needsSamples = minActiveCount() != kNoActivePixel && !timeIsUp();
+    needsSamples = hasActivePixels() && !timeIsUp();
 }
 
-uint32_t RenderSession::Private::minActiveCount() const {
-    return tileMinCount.empty() ? kNoActivePixel : *std::min_element(tileMinCount.begin(), tileMinCount.end());
+uint32_t RenderSession::Private::fewestUrgent() const {
+    return tileFewestUrgent.empty() ? kNoActivePixel
+                                    : *std::min_element(tileFewestUrgent.begin(), tileFewestUrgent.end());
+}
+
+float RenderSession::Private::topPriority() const {
+    return tileTopPriority.empty() ? 0.f : *std::max_element(tileTopPriority.begin(), tileTopPriority.end());
 }
 
 int RenderSession::Private::previewDivider() const {
@@ -402,20 +424,29 @@ void RenderSession::Private::publish(const std::vector<int> &tiles, const PixelR
 }
 
 void RenderSession::Private::tracePass(RenderPassStats &stats) {
-    const uint32_t fewest = minActiveCount();
-    if (fewest == kNoActivePixel || timeIsUp()) {
+    if (!hasActivePixels() || timeIsUp()) {
         needsSamples = false;
         return;
     }
-    // The pass brings every active pixel below `level` up to it. Pixels restarted by an edit
-    // (0 samples) catch up 1, 2, 4, … before the rest go on, so an edit shows within a pass.
+    // Urgent pixels first: the pass brings every urgent pixel below `level` up to it, so pixels
+    // restarted by an edit (0 samples) catch up 1, 2, 4, … before the rest go on, and an edit
+    // shows within a pass. Then (Adaptive past its minimum) the band of the highest priorities:
+    // each of its pixels doubles its samples (at most kMaxSamplesPerPass more).
     const uint32_t wanted = samplesWanted();
-    const uint32_t level = settings.sampling == SamplingMode::Fixed
-                               ? wanted
-                               : std::min(wanted, fewest == 0 ? 1u : fewest + std::min(fewest, kMaxSamplesPerPass));
+    const uint32_t fewest = fewestUrgent();
+    const bool urgentPass = fewest != kNoActivePixel;
+    const uint32_t level = !urgentPass                          ? 0
+                           : settings.sampling == SamplingMode::Fixed ? wanted
+                           : std::min(wanted, fewest == 0 ? 1u : fewest + std::min(fewest, kMaxSamplesPerPass));
+    const float threshold = urgentPass ? INFINITY : topPriority() / kPriorityBand;
+    auto samplesToTake = [&](size_t i) -> uint32_t { // the pixel's sample count after this pass
+        const uint32_t count = samples[i].count;
+        if (urgentPass) return priority[i] == INFINITY && count < level ? level : count;
+        return priority[i] >= threshold ? std::min(wanted, count + std::min(count, kMaxSamplesPerPass)) : count;
+    };
     std::vector<int> work;
-    for (int t = 0; t < int(tileMinCount.size()); ++t)
-        if (tileMinCount[size_t(t)] < level) work.push_back(t);
+    for (int t = 0; t < int(tileFewestUrgent.size()); ++t)
+        if (urgentPass ? tileFewestUrgent[size_t(t)] < level : tileTopPriority[size_t(t)] >= threshold) work.push_back(t);
     if (stats.kind == PassKind::Idle) stats.kind = fullPassPending ? PassKind::Full : PassKind::Refine;
 
     std::mutex merge;
@@ -439,14 +470,15 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
             }
             for (int x = r.x0; x < r.x1; ++x) {
                 const size_t i = size_t(y) * size_t(w) + size_t(x);
-                if (!active[i] || samples[i].count >= level) continue;
+                const uint32_t end = samplesToTake(i);
+                if (end <= samples[i].count) continue;
                 // An edit cancels between pixels: each pixel gets all of its new samples or none.
                 if (cancel.load(std::memory_order_relaxed)) {
                     stopped = true;
                     break;
                 }
                 detail::PixelSamples s = samples[i];
-                tracer.addSamples(x, y, level, s);
+                tracer.addSamples(x, y, end, s);
                 samples[i] = s;
                 errors[i] = s.relativeError();
                 display.at(x, y) = s.mean();
@@ -475,7 +507,7 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
             rect = unite(rect, tileRect(work[k]));
         }
     // The touched tiles and their neighbours: dilation reaches one pixel across tile borders.
-    std::vector<uint8_t> update(tileMinCount.size(), 0);
+    std::vector<uint8_t> update(tileFewestUrgent.size(), 0);
     for (int tile : touchedTiles) {
         const int tx = tile % tilesX, ty = tile / tilesX;
         for (int y = std::max(ty - 1, 0); y <= std::min(ty + 1, tilesY - 1); ++y)

@@ -16,7 +16,8 @@ enum class SamplingMode : uint8_t {
     /// error or the time limit is reached.
     Progressive,
     /// Like Progressive, but after `minSamplesPerPixel` a pixel gets more samples only while its
-    /// estimated error (or a neighbour's) is above `targetError`.
+    /// estimated error (or a neighbour's) is above `targetError`, and the pixels whose next
+    /// sample cuts the error most (estimate² / samples) get theirs first.
     Adaptive,
 };
 
