@@ -1,0 +1,176 @@
+#pragma once
+// Private: the state behind RenderSession's d-pointer. RenderSession.cpp holds the public
+// face (edits staged from any thread, the background thread, the image and stats handed out);
+// RenderSessionPasses.cpp the passes (what edits invalidate, which pixels get samples, tracing,
+// publishing).
+
+#include <mvcl/view/RenderSession.h>
+
+#include <mvcl/core/WorkerPool.h>
+#include <mvcl/lens/PolicyMap.h>
+#include <mvcl/tracer/WhittedIntegrator.h>
+
+#include "PixelTracer_p.h"
+#include "SessionPolicyDiff_p.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <limits>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace mvcl {
+
+namespace detail {
+
+using Clock = std::chrono::steady_clock;
+/// A tile's fewest samples when no pixel of it wants any.
+constexpr uint32_t kNoActivePixel = std::numeric_limits<uint32_t>::max();
+
+inline double millisecondsBetween(Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+inline PixelRect unite(const PixelRect &a, const PixelRect &b) {
+    if (a.isEmpty()) return b;
+    if (b.isEmpty()) return a;
+    return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+}
+
+inline PixelRect clipTo(const PixelRect &r, int width, int height) {
+    return {std::max(r.x0, 0), std::max(r.y0, 0), std::min(r.x1, width), std::min(r.y1, height)};
+}
+
+inline bool sameCamera(const Camera &a, const Camera &b) {
+    return a.eye() == b.eye() && a.target() == b.target() && a.up() == b.up() && a.verticalFov() == b.verticalFov();
+}
+
+} // namespace detail
+
+struct RenderSession::Private {
+    using Clock = detail::Clock;
+
+    explicit Private(const Tracer &t) : tracer(t), integrator(t) {}
+
+    const Tracer &tracer;
+    const WhittedIntegrator integrator;
+
+    // --- Staged edits: any thread, under stagedMutex. ---
+    mutable std::mutex stagedMutex;
+    std::condition_variable wake;
+    Camera stagedCamera;
+    std::vector<std::shared_ptr<Lens>> stagedLenses;
+    RayPolicy stagedBase;
+    uint64_t stagedBaseVersion = 0;
+    RenderSettings stagedSettings;
+    uint64_t editCount = 0;    ///< bumped by every edit
+    uint64_t appliedEdits = ~uint64_t(0); ///< editCount the last pass started from
+    /// Snapshots the accumulated samples were composed from (compared with the staged lenses'
+    /// current ones to see commits made without an edit call).
+    std::vector<const LensSnapshot *> appliedSnapshots;
+    std::atomic<bool> cancel{false};
+    std::atomic<bool> needsSamples{false};
+    /// A pass is between taking the edits and publishing its pixels: hasWork() stays true, so
+    /// "no work" means the display shows everything.
+    std::atomic<bool> passRunning{false};
+
+    // --- The accumulated image: the thread that runs passes only. ---
+    bool initialised = false;
+    Camera camera;
+    RenderSettings settings;
+    uint64_t baseVersion = 0;
+    std::vector<detail::LensState> lenses;
+    PolicyMap map{1, 1};
+    std::vector<detail::PixelSamples> samples;
+    std::vector<float> errors;
+    /// Per pixel, what one more sample is worth: 0, it wants no more; +∞, it wants them whatever
+    /// its estimate ("urgent": below the minimum, or not Adaptive); else (Adaptive) its dilated
+    /// estimate e squared over its sample count n. With e² ≈ σ²/n, one more sample cuts the
+    /// pixel's expected squared error σ²/n by about σ²/n² ≈ e²/n, so serving the highest first spends samples where
+    /// they cut the image's error most (samples end up about proportional to a pixel's standard
+    /// deviation, the allocation that minimises the summed squared error for a sample budget).
+    std::vector<float> priority;
+    std::vector<uint8_t> changed;  ///< scratch: pixels whose policy changed
+    int tilesX = 0, tilesY = 0;
+    std::vector<uint32_t> tileFewestUrgent; ///< fewest samples of an urgent pixel, or kNoActivePixel
+    std::vector<float> tileTopPriority;     ///< highest finite priority in the tile, 0 if none
+    /// Per tile, what ConvergenceStats sums: kept up to date wherever active flags are, so the
+    /// image's stats are a reduction over tiles, not pixels.
+    struct TileSummary {
+        uint32_t minCount = 0, maxCount = 0;
+        uint64_t countSum = 0;
+        double errorSum = 0.0;
+        float maxError = 0.f;   ///< of the pixels with an estimate (≥ 2 samples)
+        float worstError = 0.f; ///< of all pixels, +∞ if one has no estimate yet
+        uint32_t withError = 0, activeCount = 0;
+        /// Pixels off the tile's border: their dilation reads this tile's estimates only.
+        uint32_t interiorActive = 0, interiorFewestUrgent = 0;
+        float interiorTopPriority = 0.f;
+    };
+    std::vector<TileSummary> tileSummaries;
+    Framebuffer display;
+    bool fullPassPending = true;
+    Clock::time_point resetTime = Clock::now();
+    double fullNanosecondsPerSample = 0.0;    ///< thread-time per sample of full-resolution passes
+    double previewNanosecondsPerSample = 0.0; ///< the same for previews
+
+    // --- What other threads read. ---
+    std::mutex imageMutex;
+    Framebuffer published;
+    PixelRect publishedChanged;
+    std::function<void(float)> progress;
+    mutable std::mutex statsMutex;
+    RenderPassStats last;
+    ConvergenceStats convergence;
+    uint64_t passes = 0;
+
+    // --- Background thread. ---
+    std::thread thread;
+    std::atomic<bool> stopping{false};
+
+    int threads() const { return settings.threads > 0 ? settings.threads : workerThreadCount(); }
+    int width() const { return settings.width; }
+    int height() const { return settings.height; }
+    size_t pixelCount() const { return size_t(width()) * size_t(height()); }
+    PixelRect tileRect(int tile) const {
+        const int ts = settings.tileSize;
+        const int x0 = (tile % tilesX) * ts, y0 = (tile / tilesX) * ts;
+        return {x0, y0, std::min(x0 + ts, width()), std::min(y0 + ts, height())};
+    }
+
+    void edited() {
+        ++editCount;
+        cancel.store(true, std::memory_order_relaxed);
+        wake.notify_all();
+    }
+    bool hasWorkLocked() const;
+    void resize();
+    void restartPixels(const PixelRect &area, const std::vector<uint8_t> *only);
+    uint32_t samplesWanted() const;
+    float priorityOf(int x, int y) const;
+    void updateActive(const PixelRect &area);
+    void updateActiveTiles(const std::vector<int> &tiles);
+    void summariseTile(int tile);
+    void finishTile(int tile);
+    void stopWhenConverged();
+    uint32_t fewestUrgent() const;
+    float topPriority() const;
+    bool hasActivePixels() const { return fewestUrgent() != detail::kNoActivePixel || topPriority() > 0.f; }
+    bool timeIsUp() const {
+        return settings.sampling != SamplingMode::Fixed && settings.timeLimitSeconds > 0.0 &&
+               std::chrono::duration<double>(Clock::now() - resetTime).count() >= settings.timeLimitSeconds;
+    }
+    int previewDivider() const;
+    void tracePass(RenderPassStats &stats);
+    void previewPass(int divider, RenderPassStats &stats);
+    void publish(const std::vector<int> &tiles, const PixelRect &rect);
+    RenderPassStats renderPass();
+    ConvergenceStats summarise() const;
+    std::vector<LensCost> lensCosts(const std::vector<PolicyCost> &perPolicy) const;
+};
+
+} // namespace mvcl
