@@ -61,16 +61,7 @@ Viewer::Viewer(GLFWwindow *window, const ViewerOptions &options) : m_window(wind
         ImGui::GetStyle().ScaleAllSizes(m_contentScale);
     }
 
-    if (!options.script.empty()) {
-        try {
-            m_script = ViewerScript::load(options.script);
-        } catch (const Error &e) {
-            std::fprintf(stderr, "mvcl-viewer: %s\n", e.what());
-            m_quit = true;
-            m_exitCode = 2;
-            return;
-        }
-    }
+    m_script = options.script;
 
     layout();
     const glm::ivec2 viewSize = glm::max(glm::ivec2(m_viewScreenSize * m_framebufferScale), glm::ivec2(1));

@@ -15,6 +15,7 @@ int parseViewerOptions(int argc, char **argv, ViewerOptions &options) {
                  "Press F1 in the window for every mouse and key binding.",
                  "mvcl-viewer"};
     std::string size, layerRule;
+    std::filesystem::path script;
     app.add_option("scene", options.request.source, "model.gltf | model.glb | builtin:NAME (default: the session's scene)");
     app.add_option("--lenses,--session", options.request.sessionFile, "session (lens-stack) file to open");
     app.add_option("--lens", options.request.lensSpecs, "one more lens on top: TYPE:key=value,... (repeatable)");
@@ -31,7 +32,7 @@ int parseViewerOptions(int argc, char **argv, ViewerOptions &options) {
         ->check(CLI::Range(1, 1 << 20));
     app.add_option("--target-error", options.targetError, "adaptive: estimated relative error to reach; default 0.005")
         ->check(CLI::Range(0.0, 1.0));
-    app.add_option("--script", options.script, "replay events and commands from FILE (see docs/viewer.md)")
+    app.add_option("--script", script, "replay events and commands from FILE (see docs/viewer.md)")
         ->check(CLI::ExistingFile);
     app.add_option("--recovery", options.recovery, "where the recovery copy of the session goes");
     try {
@@ -54,6 +55,12 @@ int parseViewerOptions(int argc, char **argv, ViewerOptions &options) {
         return 2;
     } catch (const Error &e) {
         std::fprintf(stderr, "mvcl-viewer: command line: --layer-rule: %s\n", e.problem().c_str());
+        return 2;
+    }
+    try {
+        if (!script.empty()) options.script = ViewerScript::load(script);
+    } catch (const Error &e) {
+        std::fprintf(stderr, "mvcl-viewer: %s\n", e.what());
         return 2;
     }
     return -1;

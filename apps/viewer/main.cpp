@@ -31,7 +31,7 @@ int main(int argc, char **argv) {
         return 4;
     }
     glfwMakeContextCurrent(window);
-    glfwSwapInterval(options.script.empty() ? 1 : 0); // scripts run as fast as frames can be drawn
+    glfwSwapInterval(options.script ? 0 : 1); // scripts run as fast as frames can be drawn
 
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr; // the layout is fixed; no imgui.ini in the user's folder

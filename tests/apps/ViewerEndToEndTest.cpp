@@ -86,7 +86,9 @@ TEST(ViewerEndToEnd, ABrokenScriptOrSessionIsAClearErrorNotACrash) {
     ASSERT_EQ(runCommand("command -v xvfb-run").exitCode, 0) << "xvfb-run is missing (scripts/bootstrap.sh installs it)";
     const fs::path dir = viewerDir();
     writeScript(dir / "typo.txt", "wait-converged\nmvoe 10 10\n");
-    const CommandResult typo = runViewer("builtin:onion --script " + quoted((dir / "typo.txt").string()));
+    // Checked with the command line, before any window system is touched: no display needed.
+    const CommandResult typo = runCommand("env -u DISPLAY " + std::string(MVCL_VIEWER_EXE) + " builtin:onion --script " +
+                                          quoted((dir / "typo.txt").string()));
     EXPECT_EQ(typo.exitCode, 2) << typo.output;
     EXPECT_NE(typo.output.find("typo.txt:2"), std::string::npos) << typo.output;
 
