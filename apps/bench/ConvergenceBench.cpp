@@ -105,16 +105,7 @@ std::optional<Options> parseOptions(int argc, char **argv) {
         ->option_text(" ");
     app.add_option("--lenses", o.lensFile, "lens-stack file: lenses, camera, layer rules and (without a model) scene")
         ->type_name("FILE");
-    app.add_option_function<std::string>(
-           "--size",
-           [&](const std::string &text) {
-               const glm::ivec2 size = cli::parseImageSize(text);
-               o.width = size.x;
-               o.height = size.y;
-           },
-           "image size (default 320x240)")
-        ->type_name("WxH")
-        ->check(cli::imageSize());
+    cli::addImageSizeOption(app, o.width, o.height, "image size (default 320x240)");
     app.add_option("--seeds", o.seeds, "runs of each method, seeds 1..N (default 3)")
         ->type_name("N")
         ->check(cli::wholeNumberIn(1, 1000));

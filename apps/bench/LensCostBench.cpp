@@ -58,16 +58,7 @@ std::optional<Options> parseOptions(int argc, char **argv) {
         "usage: mvcl-lens-bench [model | builtin:<name>] [--size WxH] [--spp N] [--threads N] [--repeat R]"));
     app.set_help_flag("-h,--help", "this text");
     app.add_option("model", o.model, "model file or builtin:NAME (default the HRA female body)")->option_text(" ");
-    app.add_option_function<std::string>(
-           "--size",
-           [&](const std::string &text) {
-               const glm::ivec2 size = cli::parseImageSize(text);
-               o.width = size.x;
-               o.height = size.y;
-           },
-           "image size in pixels (default 1280x720)")
-        ->type_name("WxH")
-        ->check(cli::imageSize());
+    cli::addImageSizeOption(app, o.width, o.height, "image size in pixels (default 1280x720)");
     app.add_option("--spp", o.spp, "samples per pixel (default 1)")->type_name("N")->check(cli::wholeNumberIn(1, 65536));
     app.add_option("--threads", o.threads, "render threads, 0 = all cores (default 0)")
         ->type_name("N")

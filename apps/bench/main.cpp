@@ -89,16 +89,7 @@ std::optional<Options> parseOptions(int argc, char **argv) {
         "                  [--embree-config OPTIONS]"));
     app.set_help_flag("-h,--help", "this text");
     app.add_option("model", o.model, "model file or builtin:NAME (default the 2CylinderEngine)")->option_text(" ");
-    app.add_option_function<std::string>(
-           "--size",
-           [&](const std::string &text) {
-               const glm::ivec2 size = mvcl::cli::parseImageSize(text);
-               o.width = size.x;
-               o.height = size.y;
-           },
-           "primary rays, one per pixel of a WxH image (default 1024x1024)")
-        ->type_name("WxH")
-        ->check(mvcl::cli::imageSize());
+    mvcl::cli::addImageSizeOption(app, o.width, o.height, "primary rays, one per pixel of a WxH image (default 1024x1024)");
     app.add_option("--threads", o.threads, "threads for both tracers, 0 = all cores (default 0)")
         ->type_name("N")
         ->check(mvcl::cli::wholeNumberIn(0, 1024));

@@ -101,6 +101,21 @@ inline CLI::Validator numberBetween(double low, double high, const std::string &
 inline CLI::Validator imageSize() { return validatorFrom([](const std::string &text) { parseImageSize(text); }, ""); }
 inline CLI::Validator vector3() { return validatorFrom([](const std::string &text) { parseVector3(text); }, ""); }
 
+/// `--size WxH` into width and height, checked.
+inline CLI::Option *addImageSizeOption(CLI::App &app, int &width, int &height, const std::string &description) {
+    return app
+        .add_option_function<std::string>(
+            "--size",
+            [&width, &height](const std::string &text) {
+                const glm::ivec2 size = parseImageSize(text);
+                width = size.x;
+                height = size.y;
+            },
+            description)
+        ->type_name("WxH")
+        ->check(imageSize());
+}
+
 /// The way CLI11 shows a help screen here: the app's own usage lines instead of CLI11's
 /// generated one, option names in a column wide enough for "--target-error E".
 class UsageFormatter : public CLI::Formatter {

@@ -35,10 +35,7 @@ std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::stri
 
     app->add_option("-o,--output", cl.output, "image to write (.png/.jpg/.tif sRGB, .exr linear); default out/<scene>.png")
         ->type_name("FILE");
-    app->add_option_function<std::string>(
-           "--size", [&](const std::string &text) { const glm::ivec2 size = parseImageSize(text); cl.width = size.x; cl.height = size.y; },
-           "image size in pixels (default 800x600)")
-        ->type_name("WxH")->check(imageSize());
+    addImageSizeOption(*app, cl.width, cl.height, "image size in pixels (default 800x600)");
     app->add_option("--spp", cl.samplesPerPixel, "samples per pixel (default 4); with the options below, the minimum")
         ->type_name("N")->check(wholeNumberIn(1, 65536));
     app->add_flag("--adaptive", cl.adaptive,
