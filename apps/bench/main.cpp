@@ -8,8 +8,11 @@
 //              [--embree-config OPTIONS]   (extra rtcNewDevice options, e.g. tri_accel=bvh4.triangle4)
 //   (exit 2 for bad arguments, 1 when the model does not load)
 //   mvcl-bench convergence ...             (error against run time: ConvergenceBench.cpp)
+//   mvcl-bench cast ...                    (identical primary rays for other tracers: CastBench.cpp)
 
 #include "CommandLineValues.h"
+#include "BenchSupport.h"
+#include "CastBench.h"
 #include "ConvergenceBench.h"
 
 #include <mvcl/core/WorkerPool.h>
@@ -19,9 +22,7 @@
 #include <mvcl/tracer/RayOffset.h>
 #include <mvcl/tracer/Tracer.h>
 
-#ifdef MVCL_HAVE_EMBREE
-#include <embree3/rtcore.h>
-#endif
+#include "EmbreePeer.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -43,32 +44,19 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+#ifdef MVCL_HAVE_EMBREE
+using mvcl::bench::buildEmbree;
+using mvcl::bench::embreeMemoryMonitor;
+using mvcl::bench::g_embreeBytes;
+using mvcl::bench::g_embreePeak;
+using mvcl::bench::intersectEmbree;
+#endif
 
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-/// Runs f(i) for i in [0, n) on `threads` threads of the framework's worker pool, in chunks of
-/// up to 256 rays: one ray per item would cost more in scheduling than a fast ray takes.
-template <class F>
-void parallelRays(int n, int threads, const F &f) {
-    mvcl::parallelForChunks(std::size_t(n), threads, 256, [&f](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) f(int(i));
-    });
-}
-
-/// Best (shortest) wall time of `repeat` runs of f.
-template <class F>
-double bestSeconds(int repeat, const F &f) {
-    double best = 1e300;
-    for (int r = 0; r < repeat; ++r) {
-        const auto start = Clock::now();
-        f();
-        best = std::min(best, secondsSince(start));
-    }
-    return best;
-}
+using mvcl::bench::bestSeconds;
+using mvcl::bench::loadMeshes;
+using mvcl::bench::parallelRays;
+using mvcl::bench::secondsSince;
+using Clock = mvcl::bench::Clock;
 
 struct Options {
     std::string model = "tests/data/models/2CylinderEngine/2CylinderEngine.glb";
@@ -104,13 +92,6 @@ std::optional<Options> parseOptions(int argc, char **argv) {
     return o;
 }
 
-/// Only the triangle meshes: both tracers get exactly the same geometry.
-mvcl::Scene meshesOnly(mvcl::Scene scene) {
-    scene.spheres.clear();
-    scene.planes.clear();
-    return scene;
-}
-
 struct Rays {
     std::vector<mvcl::Ray> rays;
     std::vector<float> tMax;
@@ -143,66 +124,6 @@ Rays primaryRays(const mvcl::Scene &scene, int width, int height) {
 
 double mrays(std::size_t n, double seconds) { return double(n) / seconds * 1e-6; }
 
-#ifdef MVCL_HAVE_EMBREE
-std::atomic<long long> g_embreeBytes{0};
-std::atomic<long long> g_embreePeak{0};
-
-bool embreeMemoryMonitor(void *, ssize_t bytes, bool) {
-    const long long now = g_embreeBytes.fetch_add(bytes) + bytes;
-    long long peak = g_embreePeak.load();
-    while (now > peak && !g_embreePeak.compare_exchange_weak(peak, now)) {
-    }
-    return true;
-}
-
-RTCScene buildEmbree(RTCDevice device, const mvcl::Scene &scene) {
-    RTCScene es = rtcNewScene(device);
-    rtcSetSceneBuildQuality(es, RTC_BUILD_QUALITY_MEDIUM);
-    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-        const mvcl::TriangleMesh &mesh = scene.meshes[m];
-        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        // Copied into Embree-owned buffers: Embree needs 16 bytes of padding after the last
-        // vertex, which a std::vector<vec3> does not guarantee.
-        auto *v = static_cast<float *>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-            mesh.positions.size()));
-        for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-            v[3 * i] = mesh.positions[i].x;
-            v[3 * i + 1] = mesh.positions[i].y;
-            v[3 * i + 2] = mesh.positions[i].z;
-        }
-        auto *idx = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-            mesh.indices.size()));
-        for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
-            idx[3 * i] = mesh.indices[i].x;
-            idx[3 * i + 1] = mesh.indices[i].y;
-            idx[3 * i + 2] = mesh.indices[i].z;
-        }
-        rtcCommitGeometry(g);
-        rtcAttachGeometryByID(es, g, unsigned(m));
-        rtcReleaseGeometry(g);
-    }
-    rtcCommitScene(es);
-    return es;
-}
-
-/// rtcIntersect1 over [0, ∞), the query closestHit answers with a default RayQuery.
-void intersectEmbree(RTCScene scene, const mvcl::Ray &r, RTCRayHit &rh) {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
-    rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y, rh.ray.dir_z = r.direction.z;
-    rh.ray.tnear = 0.f;
-    rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.mask = ~0u;
-    rh.ray.flags = 0;
-    rh.ray.time = 0.f;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene, &ctx, &rh);
-}
-#endif
 
 void printRow(const char *what, double ours, double embree, const char *unit, bool higherIsBetter) {
     if (embree > 0.0)
@@ -217,6 +138,7 @@ void printRow(const char *what, double ours, double embree, const char *unit, bo
 
 int main(int argc, char **argv) {
     if (argc > 1 && std::string(argv[1]) == "convergence") return mvcl::bench::runConvergenceBench(argc - 1, argv + 1);
+    if (argc > 1 && std::string(argv[1]) == "cast") return mvcl::bench::runCastBench(argc - 1, argv + 1);
     std::optional<Options> options;
     try {
         options = parseOptions(argc, argv);
@@ -228,9 +150,7 @@ int main(int argc, char **argv) {
     try {
         const Options &opt = *options;
         const auto loadStart = Clock::now();
-        const mvcl::Scene scene = meshesOnly(opt.model.rfind("builtin:", 0) == 0
-                                                 ? mvcl::makeBuiltinScene(opt.model.substr(8))
-                                                 : mvcl::loadGltf(opt.model));
+        const mvcl::Scene scene = loadMeshes(opt.model);
         std::printf("model %s: %zu meshes, %zu triangles, loaded in %.1f ms\n", opt.model.c_str(),
                     scene.meshes.size(), scene.triangleCount(), secondsSince(loadStart) * 1e3);
         std::printf("%dx%d primary rays, %d threads, best of %d runs\n", opt.width, opt.height,

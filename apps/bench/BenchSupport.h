@@ -1,0 +1,54 @@
+#pragma once
+/// \file BenchSupport.h
+/// What mvcl-bench's measurements share: wall-clock timing, rays on the worker pool, the
+/// meshes both tracers get.
+
+#include <mvcl/core/WorkerPool.h>
+#include <mvcl/model/BuiltinScenes.h>
+#include <mvcl/model/GltfLoader.h>
+#include <mvcl/model/Scene.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstddef>
+#include <string>
+
+namespace mvcl::bench {
+
+using Clock = std::chrono::steady_clock;
+
+inline double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Runs f(i) for i in [0, n) on `threads` threads of the framework's worker pool, in chunks of
+/// up to 256 rays: one ray per item would cost more in scheduling than a fast ray takes.
+template <class F>
+void parallelRays(int n, int threads, const F &f) {
+    parallelForChunks(std::size_t(n), threads, 256, [&f](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) f(int(i));
+    });
+}
+
+/// Best (shortest) wall time of `repeat` runs of f.
+template <class F>
+double bestSeconds(int repeat, const F &f) {
+    double best = 1e300;
+    for (int r = 0; r < repeat; ++r) {
+        const auto start = Clock::now();
+        f();
+        best = std::min(best, secondsSince(start));
+    }
+    return best;
+}
+
+/// Only the triangle meshes of `source` (a model file or builtin:NAME): both tracers get
+/// exactly the same geometry.
+inline Scene loadMeshes(const std::string &source) {
+    Scene scene = source.rfind("builtin:", 0) == 0 ? makeBuiltinScene(source.substr(8)) : loadGltf(source);
+    scene.spheres.clear();
+    scene.planes.clear();
+    return scene;
+}
+
+} // namespace mvcl::bench
