@@ -42,13 +42,16 @@ double bestSeconds(int repeat, const F &f) {
     return best;
 }
 
-/// Only the triangle meshes of `source` (a model file or builtin:NAME): both tracers get
-/// exactly the same geometry.
-inline Scene loadMeshes(const std::string &source) {
-    Scene scene = source.rfind("builtin:", 0) == 0 ? makeBuiltinScene(source.substr(8)) : loadGltf(source);
+/// Only the triangle meshes of `scene`: both tracers get exactly the same geometry.
+inline Scene meshesOf(Scene scene) {
     scene.spheres.clear();
     scene.planes.clear();
     return scene;
+}
+
+/// The triangle meshes of `source` (a model file or builtin:NAME) as the file has them.
+inline Scene loadMeshes(const std::string &source) {
+    return meshesOf(source.rfind("builtin:", 0) == 0 ? makeBuiltinScene(source.substr(8)) : loadGltf(source));
 }
 
 } // namespace mvcl::bench
