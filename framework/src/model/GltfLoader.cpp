@@ -5,24 +5,16 @@
 ///   1. size cap; GLB header and chunk lengths checked here (tinygltf 2.7 can read up to 8 bytes
 ///      past a truncated BIN chunk); JSON nesting depth capped (tinygltf converts `extras`
 ///      recursively);
-///   2. tinygltf with image decoding off and sandboxed file access (GltfFileSandbox);
+///   2. tinygltf with its image decoders off (encoded bytes kept) and sandboxed file access
+///      (GltfFileSandbox);
 ///   3. GltfValidator: asset version, extensionsRequired, bufferView/accessor bounds in checked
 ///      uint64, sparse accessors, index accessor types, node forest (no cycles, one parent), scene;
-///   4. GltfSceneBuilder: node transforms in double, one TriangleMesh per (node, material),
+///   4. GltfMaterialBuilder: materials, and the textures they use decoded (GltfImageDecoder);
+///   5. GltfSceneBuilder: node transforms in double, one TriangleMesh per (node, material),
 ///      triangulation, normals, re-centring on the world AABB centre, lights, cameras, layers.
 ///
-/// Material mapping (glTF pbrMetallicRoughness → our Phong Material), with base = baseColorFactor,
-/// m = metallicFactor, r = roughnessFactor (all clamped to [0, 1]); textures are ignored:
-///   diffuse      = base.rgb · (1 − m)            (metals have no diffuse lobe)
-///   ambient      = diffuse
-///   specular Ks  = (1 − r) · (0.3 + 0.7·m)        (smooth → strong highlight; metals strongest)
-///   shininess Ps = clamp(2 / max(r, 0.05)⁴ − 2, 1, 1024)   (Blinn-Phong exponent of roughness r)
-///   reflectivity = m · (1 − r)                    (smooth metals mirror)
-///   transparency = KHR_materials_transmission.transmissionFactor, or 1 − base.a for alphaMode
-///                  BLEND (the larger of the two); 0 otherwise
-///   ior          = KHR_materials_ior.ior (default 1.5), clamped to [1, 10]
-///   A primitive without a material gets an appended "default" material (Material's defaults);
-///   Scene::materials is never empty.
+/// Materials and textures: GltfMaterialBuilder (the mapping is in PhongTerms.h); images are
+/// decoded by GltfImageDecoder.
 ///
 /// Lights (KHR_lights_punctual): intensity = colour · intensity (candela for point/spot, lux for
 /// directional); point lights fall off as 1/r² (constant = linear = 0, quadratic = 1); spot lights
@@ -36,6 +28,7 @@
 
 #include "GltfContext_p.h"
 #include "GltfFileSandbox_p.h"
+#include "GltfMaterialBuilder_p.h"
 #include "GltfSceneBuilder_p.h"
 #include "GltfValidator_p.h"
 
@@ -110,9 +103,15 @@ void checkJsonDepth(std::span<const std::uint8_t> json, const std::string &sourc
     }
 }
 
-/// Image decoding is off: we never use textures, and decoders are attack surface.
-bool skipImage(tinygltf::Image *, const int, std::string *, std::string *, int, int, const unsigned char *, int,
-               void *) {
+/// tinygltf's own decoders stay unused: images given by URI (bytes tinygltf read through the
+/// sandbox or decoded from a data URI) are kept encoded for GltfImageDecoder, which decodes only
+/// the images materials use, with size limits. Images in a bufferView are read later from the
+/// validated buffers (tinygltf passes a pointer it has not bounds-checked: it is not touched).
+bool captureImage(tinygltf::Image *image, const int index, std::string *, std::string *, int, int,
+                  const unsigned char *bytes, int size, void *user) {
+    if (image->bufferView >= 0 || !bytes || size <= 0) return true;
+    auto &captured = *static_cast<gltf::CapturedImages *>(user);
+    captured[index].assign(bytes, bytes + size);
     return true;
 }
 
@@ -161,7 +160,8 @@ Scene loadGltfFromMemory(std::span<const std::uint8_t> bytes, const std::string 
     try {
         tinygltf::TinyGLTF parser;
         gltf::GltfFileSandbox sandbox(baseDir, options.maxFileBytes);
-        parser.SetImageLoader(&skipImage, nullptr);
+        gltf::CapturedImages images;
+        parser.SetImageLoader(&captureImage, &images);
         parser.SetFsCallbacks(sandbox.callbacks());
 
         tinygltf::Model model;
@@ -187,6 +187,8 @@ Scene loadGltfFromMemory(std::span<const std::uint8_t> bytes, const std::string 
         gltf::GltfContext context(model, name, scene.report);
         gltf::GltfValidator validator(context);
         validator.validate();
+        gltf::GltfMaterialBuilder materials(context, images, options, scene);
+        materials.build();
         gltf::GltfSceneBuilder builder(context, validator, options, scene);
         builder.build();
         return scene;

@@ -31,7 +31,8 @@ const std::set<std::string> &supportedRequiredExtensions() {
         "KHR_materials_transmission", // mapped to transparency
         "KHR_materials_ior",          // mapped to ior
         "KHR_mesh_quantization",      // integer positions/normals are decoded generically
-        "KHR_texture_transform",      // textures are not used, so transforms are irrelevant
+        "KHR_texture_transform",      // applied to texture coordinates
+        "KHR_materials_emissive_strength", // scales emission
     };
     return kSupported;
 }
