@@ -30,7 +30,8 @@ std::string GltfImageDecoder::formatOf(std::span<const std::uint8_t> bytes) {
 }
 
 std::shared_ptr<const TextureImage> GltfImageDecoder::decode(std::span<const std::uint8_t> bytes,
-                                                             const std::string &name, std::string &problem) {
+                                                             const std::string &name, TextureColorSpace space,
+                                                             std::string &problem) {
     const std::string format = formatOf(bytes);
     if (format.empty()) {
         problem = "is not a PNG or JPEG image";
@@ -98,7 +99,7 @@ std::shared_ptr<const TextureImage> GltfImageDecoder::decode(std::span<const std
             q[3] = readChannels == 4 ? p[3] : 255;
         }
     }
-    auto image = std::make_shared<const TextureImage>(name, int(width), int(height), std::move(rgba));
+    auto image = std::make_shared<const TextureImage>(name, int(width), int(height), std::move(rgba), space);
     m_bytesUsed += image->memoryBytes();
     return image;
 }

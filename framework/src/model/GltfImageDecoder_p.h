@@ -21,7 +21,7 @@ public:
 
     /// The decoded image, or nullptr with `problem` set (never throws for bad image data).
     std::shared_ptr<const TextureImage> decode(std::span<const std::uint8_t> bytes, const std::string &name,
-                                               std::string &problem);
+                                               TextureColorSpace space, std::string &problem);
 
     std::size_t bytesUsed() const { return m_bytesUsed; }
 

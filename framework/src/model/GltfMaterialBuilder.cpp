@@ -134,15 +134,17 @@ void GltfMaterialBuilder::build() {
         const int index = int(i);
         MetallicRoughness &mr = m.metallicRoughness;
         const auto &pbr = src.pbrMetallicRoughness;
-        mr.baseColorTexture = textureRef(pbr.baseColorTexture, "baseColorTexture", index, 1.f);
-        mr.metallicRoughnessTexture = textureRef(pbr.metallicRoughnessTexture, "metallicRoughnessTexture", index, 1.f);
-        mr.emissiveTexture = textureRef(src.emissiveTexture, "emissiveTexture", index, 1.f);
+        const TextureColorSpace srgb = TextureColorSpace::Srgb, linear = TextureColorSpace::Linear;
+        mr.baseColorTexture = textureRef(pbr.baseColorTexture, "baseColorTexture", index, 1.f, srgb);
+        mr.metallicRoughnessTexture =
+            textureRef(pbr.metallicRoughnessTexture, "metallicRoughnessTexture", index, 1.f, linear);
+        mr.emissiveTexture = textureRef(src.emissiveTexture, "emissiveTexture", index, 1.f, srgb);
         const double normalScale = std::isfinite(src.normalTexture.scale) ? src.normalTexture.scale : 1.0;
         mr.normalTexture = textureRef(src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions,
-                                      "normalTexture", index, float(normalScale));
+                                      "normalTexture", index, float(normalScale), linear);
         mr.occlusionTexture =
             textureRef(src.occlusionTexture.index, src.occlusionTexture.texCoord, src.occlusionTexture.extensions,
-                       "occlusionTexture", index, clamp01(src.occlusionTexture.strength));
+                       "occlusionTexture", index, clamp01(src.occlusionTexture.strength), linear);
         // An emissive texture with a black factor emits nothing: glTF multiplies them.
         m_scene.materials.push_back(std::move(m));
     }
@@ -150,12 +152,13 @@ void GltfMaterialBuilder::build() {
 }
 
 TextureRef GltfMaterialBuilder::textureRef(const tinygltf::TextureInfo &info, const std::string &slot, int material,
-                                           float strength) {
-    return textureRef(info.index, info.texCoord, info.extensions, slot, material, strength);
+                                           float strength, TextureColorSpace space) {
+    return textureRef(info.index, info.texCoord, info.extensions, slot, material, strength, space);
 }
 
 TextureRef GltfMaterialBuilder::textureRef(int index, int texCoord, const tinygltf::ExtensionMap &extensions,
-                                           const std::string &slot, int material, float strength) {
+                                           const std::string &slot, int material, float strength,
+                                           TextureColorSpace space) {
     TextureRef ref;
     if (index < 0) return ref;
     const std::string where = "material " + std::to_string(material) +
@@ -186,11 +189,11 @@ TextureRef GltfMaterialBuilder::textureRef(int index, int texCoord, const tinygl
                        "; mvcl reads TEXCOORD_0 and TEXCOORD_1 only, so the factor is used");
         return TextureRef{};
     }
-    ref.texture = sceneTexture(index, where);
+    ref.texture = sceneTexture(index, where, space);
     return ref;
 }
 
-int GltfMaterialBuilder::sceneTexture(int index, const std::string &where) {
+int GltfMaterialBuilder::sceneTexture(int index, const std::string &where, TextureColorSpace space) {
     if (const auto it = m_sceneTextures.find(index); it != m_sceneTextures.end()) return it->second;
     int result = -1;
     if (std::size_t(index) >= m_model.textures.size()) {
@@ -208,7 +211,7 @@ int GltfMaterialBuilder::sceneTexture(int index, const std::string &where) {
                 }
         if (source == -1)
             m_context.warn(where + ": texture " + std::to_string(index) + " has no image; the factor is used");
-        std::shared_ptr<const TextureImage> img = source >= 0 ? image(source, where) : nullptr;
+        std::shared_ptr<const TextureImage> img = source >= 0 ? image(source, where, space) : nullptr;
         if (img) {
             Texture texture;
             texture.name = !src.name.empty() ? src.name : img->name();
@@ -226,7 +229,8 @@ int GltfMaterialBuilder::sceneTexture(int index, const std::string &where) {
     return result;
 }
 
-std::shared_ptr<const TextureImage> GltfMaterialBuilder::image(int index, const std::string &where) {
+std::shared_ptr<const TextureImage> GltfMaterialBuilder::image(int index, const std::string &where,
+                                                               TextureColorSpace space) {
     if (const auto it = m_images.find(index); it != m_images.end()) return it->second;
     std::shared_ptr<const TextureImage> result;
     std::string name = "image " + std::to_string(index);
@@ -259,7 +263,7 @@ std::shared_ptr<const TextureImage> GltfMaterialBuilder::image(int index, const 
         }
         if (haveBytes) {
             std::string problem;
-            result = m_decoder.decode(bytes, name, problem);
+            result = m_decoder.decode(bytes, name, space, problem);
             if (result)
                 ++m_context.report().texturesDecoded;
             else

@@ -33,12 +33,14 @@ public:
 
 private:
     TextureRef textureRef(const tinygltf::TextureInfo &info, const std::string &slot, int material,
-                          float strength);
+                          float strength, TextureColorSpace space);
     TextureRef textureRef(int index, int texCoord, const tinygltf::ExtensionMap &extensions,
-                          const std::string &slot, int material, float strength);
+                          const std::string &slot, int material, float strength, TextureColorSpace space);
     /// Scene texture index of glTF texture `index`, or −1 (with a warning) if it cannot be used.
-    int sceneTexture(int index, const std::string &where);
-    std::shared_ptr<const TextureImage> image(int index, const std::string &where);
+    /// `space` is how the first material slot that uses the image reads it (its levels average
+    /// in linear light when sRGB).
+    int sceneTexture(int index, const std::string &where, TextureColorSpace space);
+    std::shared_ptr<const TextureImage> image(int index, const std::string &where, TextureColorSpace space);
 
     GltfContext &m_context;
     const tinygltf::Model &m_model;

@@ -49,10 +49,24 @@ float reduceCoordinate(float u, TextureWrap wrap) {
     return u - 2.f * std::floor(u * 0.5f);
 }
 
+/// Linear 0..1 → the nearest 8-bit sRGB code, by binary search in the decoding table (exact
+/// inverse of what sampling does).
+std::uint8_t linearToSrgb8(float v) {
+    const std::array<float, 256> &t = srgbTable();
+    const auto it = std::lower_bound(t.begin(), t.end(), v);
+    if (it == t.begin()) return 0;
+    if (it == t.end()) return 255;
+    const auto below = it - 1;
+    return std::uint8_t((v - *below < *it - v ? below : it) - t.begin());
+}
+
 } // namespace
 
-TextureImage::TextureImage(std::string name, int width, int height, std::vector<std::uint8_t> rgba)
+TextureImage::TextureImage(std::string name, int width, int height, std::vector<std::uint8_t> rgba,
+                           TextureColorSpace space)
     : m_name(std::move(name)) {
+    const std::array<float, 256> &table = srgbTable();
+    const bool srgb = space == TextureColorSpace::Srgb;
     Level base;
     base.width = std::max(width, 1);
     base.height = std::max(height, 1);
@@ -70,16 +84,20 @@ TextureImage::TextureImage(std::string name, int width, int height, std::vector<
         for (int y = 0; y < next.height; ++y)
             for (int x = 0; x < next.width; ++x)
                 for (int c = 0; c < 4; ++c) {
+                    const bool decode = srgb && c < 3; // alpha is always linear
                     int sum = 0;
+                    float linearSum = 0.f;
                     for (int dy = 0; dy < 2; ++dy)
                         for (int dx = 0; dx < 2; ++dx) {
                             const int sx = std::min(2 * x + dx, src.width - 1);
                             const int sy = std::min(2 * y + dy, src.height - 1);
-                            sum += src.rgba[(std::size_t(sy) * std::size_t(src.width) + std::size_t(sx)) * 4 +
-                                            std::size_t(c)];
+                            const std::uint8_t v = src.rgba[(std::size_t(sy) * std::size_t(src.width) +
+                                                             std::size_t(sx)) * 4 + std::size_t(c)];
+                            sum += v;
+                            linearSum += table[v];
                         }
                     next.rgba[(std::size_t(y) * std::size_t(next.width) + std::size_t(x)) * 4 + std::size_t(c)] =
-                        std::uint8_t((sum + 2) / 4);
+                        decode ? linearToSrgb8(0.25f * linearSum) : std::uint8_t((sum + 2) / 4);
                 }
         m_levels.push_back(std::move(next));
     }

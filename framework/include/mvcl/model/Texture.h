@@ -38,7 +38,10 @@ enum class TextureColorSpace : uint8_t { Linear, Srgb };
 class TextureImage {
 public:
     /// `rgba` holds width·height·4 bytes, rows top to bottom (glTF's uv (0, 0) is the top left).
-    TextureImage(std::string name, int width, int height, std::vector<std::uint8_t> rgba);
+    /// The levels of an sRGB image average in linear light (a distant black-and-white checker
+    /// is a mid grey, not the darker sRGB average).
+    TextureImage(std::string name, int width, int height, std::vector<std::uint8_t> rgba,
+                 TextureColorSpace space = TextureColorSpace::Linear);
 
     const std::string &name() const { return m_name; }
     int width() const { return m_levels.front().width; }
