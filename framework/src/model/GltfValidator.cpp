@@ -40,6 +40,10 @@ const std::set<std::string> &supportedRequiredExtensions() {
 
 } // namespace
 
+bool GltfValidator::isSupportedRequiredExtension(const std::string &name) {
+    return supportedRequiredExtensions().count(name) != 0;
+}
+
 std::uint32_t readUnsignedInteger(const unsigned char *p, int componentType) {
     switch (componentType) {
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
