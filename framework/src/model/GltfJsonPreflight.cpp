@@ -57,14 +57,16 @@ std::string base64(const std::string &data) {
 
 /// A data URI tinygltf cannot decode, rewritten as one it can; nullopt when it is not a data URI
 /// we understand (then tinygltf and the sandbox report it).
-std::optional<std::string> rewriteDataUri(const std::string &uri, const char *mediaType) {
+std::optional<std::string> rewriteDataUri(const std::string &uri, const char *mediaType, std::size_t &decodedBytes) {
     if (uri.rfind("data:", 0) != 0 || tinygltfDecodes(uri)) return std::nullopt;
     const std::size_t comma = uri.find(',');
     if (comma == std::string::npos) return std::nullopt;
     const std::string header = uri.substr(5, comma - 5);
     const std::string payload = uri.substr(comma + 1);
-    if (header.size() >= 7 && header.compare(header.size() - 7, 7, ";base64") == 0)
+    if (header.size() >= 7 && header.compare(header.size() - 7, 7, ";base64") == 0) {
+        decodedBytes = payload.size() / 4 * 3; // about: tinygltf checks the exact length
         return std::string("data:") + mediaType + ";base64," + payload; // only the media type differs
+    }
     // RFC 2397 without ;base64: the data is percent-encoded.
     std::string bytes;
     bytes.reserve(payload.size());
@@ -79,13 +81,14 @@ std::optional<std::string> rewriteDataUri(const std::string &uri, const char *me
             bytes += payload[i];
         }
     }
+    decodedBytes = bytes.size();
     return std::string("data:") + mediaType + ";base64," + base64(bytes);
 }
 
 } // namespace
 
 GltfJsonPreflight::GltfJsonPreflight(std::span<const std::uint8_t> json, bool isGlb, const std::string &source)
-    : m_isGlb(isGlb) {
+    : m_isGlb(isGlb), m_source(source) {
     // Invalid JSON is tinygltf's to report; the preflight then changes nothing.
     m_doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
     m_parsed = !m_doc.is_discarded() && m_doc.is_object();
@@ -141,7 +144,13 @@ void GltfJsonPreflight::repairDataUris() {
                                 : uri.rfind("data:image/png", 0) == 0 ? "image/png"
                                 : uri.rfind("data:image/jpeg", 0) == 0 ? "image/jpeg"
                                                                         : "application/octet-stream";
-            if (const std::optional<std::string> fixed = rewriteDataUri(uri, media)) {
+            std::size_t decoded = 0;
+            if (const std::optional<std::string> fixed = rewriteDataUri(uri, media, decoded)) {
+                if (!isImage && item.contains("byteLength") && item["byteLength"].is_number_unsigned() &&
+                    decoded < item["byteLength"].get<std::uint64_t>() && uri.find(";base64,") == std::string::npos)
+                    throw Error(m_source, std::string(what) + " " + std::to_string(i) + ": its percent-encoded data URI holds " +
+                                              std::to_string(decoded) + " bytes, fewer than its byteLength " +
+                                              std::to_string(item["byteLength"].get<std::uint64_t>()));
                 item["uri"] = *fixed;
                 m_warnings.push_back(std::string(what) + " " + std::to_string(i) +
                                      ": data URI re-encoded as base64 (it was percent-encoded or of another media type)");

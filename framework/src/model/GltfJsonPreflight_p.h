@@ -48,6 +48,7 @@ private:
     nlohmann::json m_doc;
     bool m_parsed = false;
     bool m_isGlb = false;
+    std::string m_source;
     int m_fallbackStage = 0;
     std::optional<std::string> m_repaired;
     std::vector<std::string> m_warnings;

@@ -14,6 +14,12 @@ struct Scene;
 struct LayerInferenceSettings {
     int samplesPerMesh = 64;        ///< triangle centroids sampled per mesh
     float enclosedFraction = 0.6f;  ///< share of enclosed samples that makes a mesh "inside"
+    /// Rays cast from each sample: the six axis directions, then more spread evenly over the
+    /// sphere (Fibonacci points) up to this count.
+    int directions = 6;
+    /// A sample is enclosed when at least this share of its rays hit another remaining mesh
+    /// (1 = all of them: a sample seen from outside along any direction is not enclosed).
+    float hiddenFraction = 1.f;
     int firstLayer = 0;             ///< layer given to the outermost peel
 };
 
