@@ -143,6 +143,7 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
 
     const int firstLayer = std::clamp(settings.firstLayer, 0, kMaxLayers - 1);
     std::vector<int> assigned(parts.size(), -1);
+    std::vector<float> confidence(parts.size(), 0.f);
     {
         // The tracer reads the scene; layers are written back only after it is gone.
         const Tracer tracer(scene);
@@ -154,7 +155,10 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
         int layer = firstLayer;
         while (!remaining.empty()) {
             if (layer == kMaxLayers - 1) { // out of layers: everything left is innermost
-                for (uint32_t p : remaining) assigned[p] = layer;
+                for (uint32_t p : remaining) {
+                    assigned[p] = layer;
+                    confidence[p] = 0.f;
+                }
                 break;
             }
             // Active = not yet peeled, or preset meshes of this layer or deeper.
@@ -190,7 +194,11 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
                 for (uint32_t p : remaining)
                     if (fraction[p] == least) peel.push_back(p);
             }
-            for (uint32_t p : peel) assigned[p] = layer;
+            const float threshold = std::max(settings.enclosedFraction, 1e-6f);
+            for (uint32_t p : peel) {
+                assigned[p] = layer;
+                confidence[p] = std::clamp((threshold - fraction[p]) / threshold, 0.f, 1.f);
+            }
             std::erase_if(remaining, [&](uint32_t p) { return assigned[p] >= 0; });
             ++layer;
         }
@@ -203,6 +211,7 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
         TriangleMesh &mesh = scene.meshes[i];
         mesh.layer = layer;
         mesh.layerSource = LayerSource::Inferred;
+        mesh.layerConfidence = confidence[partOf[i]];
         scene.layers.ensure(layer);
         layers.insert(layer);
         ++result.meshesAssigned;

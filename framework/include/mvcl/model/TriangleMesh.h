@@ -38,6 +38,10 @@ struct TriangleMesh {
     uint32_t material = 0;           ///< index into Scene::materials
     int layer = 0;
     LayerSource layerSource = LayerSource::Unassigned;
+    /// For LayerSource::Inferred, how clearly the mesh's part was seen from outside when it was
+    /// peeled, 0..1: 1 = none of its samples enclosed, 0 = at the threshold (or peeled only
+    /// because everything left enclosed everything else). 1 for the other sources.
+    float layerConfidence = 1.f;
     int sourceNode = -1; ///< glTF node index, -1 for built-in geometry
     int sourceMesh = -1; ///< glTF mesh index, -1 for built-in geometry
 };
