@@ -302,6 +302,74 @@ TEST(GltfTextures, NormalMapsTiltTheShadingNormalWithGeneratedTangents) {
     EXPECT_GT(lit, 0.8f); // cos 15° ≈ 0.97 instead of cos 60° = 0.5
 }
 
+TEST(GltfTextures, MaterialFeaturesMatchTheGoldenImage) {
+    // Left: a card with a checkerboard alpha mask casting a checkered shadow on the floor; middle:
+    // an emissive square glowing orange; right: a transmissive (KHR_materials_transmission, ior
+    // 1.5) block refracting the floor. Default key and fill lights, through mvcl-render.
+    std::vector<std::uint8_t> mask(8 * 8 * 4, 255);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            std::uint8_t *t = mask.data() + (y * 8 + x) * 4;
+            t[0] = 40;
+            t[1] = 120;
+            t[2] = 220;
+            t[3] = (x + y) % 2 ? 255 : 0;
+        }
+    GltfWriter w = texturedSquare(encode(8, 8, mask, "png"), "image/png",
+                                  {{"alphaMode", "MASK"},
+                                   {"doubleSided", true},
+                                   {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}}}},
+                                  kNearest);
+    w.doc["nodes"][0]["translation"] = {-2.4, 0.0, 0.0};
+    const auto square = [&](nlohmann::json material, std::vector<double> translation, std::vector<double> scale) {
+        const int index = int(w.doc["materials"].size());
+        w.doc["materials"].push_back(material);
+        nlohmann::json prim = w.doc["meshes"][0]["primitives"][0];
+        prim["material"] = index;
+        const int mesh = w.mesh(prim);
+        w.doc["scenes"][0]["nodes"].push_back(w.node({{"mesh", mesh}, {"translation", translation}, {"scale", scale}}));
+    };
+    square({{"emissiveFactor", {1.0, 0.45, 0.1}}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.1, 0.1, 0.1, 1.0}}, {"metallicFactor", 0.0}}}},
+           {0.0, 0.0, 0.0}, {0.8, 0.8, 1.0});
+    // The floor: a square turned to lie in y = −1.2, seen from above and in front.
+    const int floorMaterial = int(w.doc["materials"].size());
+    w.doc["materials"].push_back({{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.75, 1.0}}, {"metallicFactor", 0.0}}}});
+    nlohmann::json floorPrim = w.doc["meshes"][0]["primitives"][0];
+    floorPrim["material"] = floorMaterial;
+    const int floorMesh = w.mesh(floorPrim);
+    w.doc["scenes"][0]["nodes"].push_back(w.node({{"mesh", floorMesh},
+                                                  {"translation", {0.0, -1.2, 0.0}},
+                                                  {"rotation", {-0.7071068, 0.0, 0.0, 0.7071068}},
+                                                  {"scale", {5.0, 3.0, 1.0}}}));
+    // The glass block: a closed box from the metallic-roughness grid's sphere helper would do, but
+    // two squares (front and back) of a thin slab are enough to refract.
+    const int glass = int(w.doc["materials"].size());
+    w.doc["materials"].push_back({{"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 0.1}}},
+                                  {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 0.9}}},
+                                                  {"KHR_materials_ior", {{"ior", 1.5}}}}}});
+    const int boxPos = w.positions({-1, -1, -1, 1, -1, -1, -1, 1, -1, 1, 1, -1, -1, -1, 1, 1, -1, 1, -1, 1, 1, 1, 1, 1});
+    const int boxIdx = w.indices16({0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5});
+    const int boxMesh = w.mesh({{"attributes", {{"POSITION", boxPos}}}, {"indices", boxIdx}, {"material", glass}});
+    w.doc["scenes"][0]["nodes"].push_back(w.node({{"mesh", boxMesh}, {"translation", {2.4, -0.2, 0.4}}, {"scale", {0.8, 1.0, 0.5}}}));
+    w.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_ior"};
+
+    const fs::path file = outDir() / "material-features.gltf";
+    std::ofstream(file) << w.text();
+    const fs::path out = outDir() / "gltf-material-features.png";
+    const fs::path golden = fs::path(MVCL_GOLDEN_DIR) / "gltf-material-features.png";
+    fs::remove(out);
+    const CommandResult r = runRender(quoted(file.string()) + " --size 300x160 --spp 4 --eye 0,2.5,7 --target 0,-0.4,0 --fov 40 -o " +
+                                      quoted(out.string()));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    if (updateGoldenRequested()) {
+        fs::copy_file(out, golden, fs::copy_options::overwrite_existing);
+        GTEST_SKIP() << "wrote " << golden;
+    }
+    ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run with MVCL_UPDATE_GOLDEN=1";
+    const ImageDifference diff = compareImages(readImage(out), readImage(golden), 8);
+    EXPECT_LT(diff.differingFraction, 0.002) << "max channel delta " << diff.maxChannelDelta;
+}
+
 namespace {
 
 /// Renders a model of tests/data/models through mvcl-render and compares it with
