@@ -64,8 +64,12 @@ void printInfo(const Scene &scene) {
         std::printf("layer %-4d %-20s %zu meshes, %zu triangles\n", layer.id, layer.name.c_str(), meshes, triangles);
     }
     for (const TriangleMesh &m : scene.meshes)
-        std::printf("  mesh %-40s layer %d (%s), %zu triangles\n", m.name.c_str(), m.layer,
-                    layerSourceName(m.layerSource), m.indices.size());
+        if (m.layerSource == LayerSource::Inferred)
+            std::printf("  mesh %-40s layer %d (inferred, confidence %.2f), %zu triangles\n", m.name.c_str(), m.layer,
+                        double(m.layerConfidence), m.indices.size());
+        else
+            std::printf("  mesh %-40s layer %d (%s), %zu triangles\n", m.name.c_str(), m.layer,
+                        layerSourceName(m.layerSource), m.indices.size());
     if (scene.report.degenerateTrianglesDropped)
         std::printf("dropped    %zu degenerate triangles\n", scene.report.degenerateTrianglesDropped);
     if (scene.report.nonUnitNormalsFixed)

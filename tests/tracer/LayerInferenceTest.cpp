@@ -101,6 +101,34 @@ TEST(LayerInference, PresetMeshesKeepTheirLayerAndOcclude) {
     }
 }
 
+TEST(LayerInference, AMeshThatPokesOutButIsMostlyHiddenGoesDeeper) {
+    // A rod in a long tube open at both ends (a bone seen at the joints, a valve in a heart):
+    // from the rod's samples only the narrow cones toward the tube's ends are open.
+    Scene s;
+    s.materials.push_back(Material{});
+    TriangleMesh tube = box("tube", glm::vec3(0.f), 1.f);
+    tube.indices.erase(tube.indices.begin() + 8, tube.indices.end()); // drop the two x faces
+    for (glm::vec3 &p : tube.positions) p *= glm::vec3(10.f, 3.f, 3.f);
+    s.meshes.push_back(tube);
+    TriangleMesh rod = box("rod", glm::vec3(0.f), 1.f);
+    for (glm::vec3 &p : rod.positions) p *= glm::vec3(2.f, 0.3f, 0.3f);
+    s.meshes.push_back(rod);
+    Scene sixAxes = s;
+    inferLayersByContainment(s);
+    EXPECT_EQ(layersByName(s).at("tube"), 0);
+    EXPECT_EQ(layersByName(s).at("rod"), 1);
+    EXPECT_GT(s.meshes[0].layerConfidence, 0.5f); // nothing encloses the tube
+    EXPECT_GE(s.meshes[1].layerConfidence, 0.f);
+    EXPECT_LE(s.meshes[1].layerConfidence, 1.f);
+    // Requiring every one of the six axis rays to be blocked (the first version of the
+    // inference) calls the rod visible and puts it beside the tube.
+    LayerInferenceSettings strict;
+    strict.directions = 6;
+    strict.hiddenFraction = 1.f;
+    inferLayersByContainment(sixAxes, strict);
+    EXPECT_EQ(layersByName(sixAxes).at("rod"), 0);
+}
+
 TEST(LayerInference, CoincidentShellsStillTerminate) {
     Scene s;
     s.meshes.push_back(box("a", glm::vec3(0.f), 1.f));
@@ -117,8 +145,10 @@ TEST(LayerInference, CoincidentShellsStillTerminate) {
 struct ModelCase {
     const char *folder;
     const char *file;
-    /// Measured per-node agreement minus a margin. Measured (64 samples, 0.6): engine 59/67,
-    /// kidney 14/15, mosquito 3/3, body 80/84; stable for 16..512 samples.
+    /// Measured per-node agreement minus a margin. Measured (64 samples, 26 directions, hidden
+    /// share 0.9, enclosed share 0.6): engine 61/67, kidney 14/15, mosquito 3/3, body 82/84, the
+    /// same for 14..50 directions, hidden shares 0.9..0.95 and enclosed shares 0.6..0.7. With six
+    /// axis rays all required blocked (the first version): 59/67, 14/15, 3/3, 80/84.
     double minAgreement;
 };
 
@@ -168,10 +198,10 @@ TEST_P(LayerInferenceModels, AgreesWithSuggestedLayers) {
 }
 
 INSTANTIATE_TEST_SUITE_P(LayerInferenceSuggested, LayerInferenceModels,
-                         ::testing::Values(ModelCase{"2CylinderEngine", "2CylinderEngine.glb", 0.85},
+                         ::testing::Values(ModelCase{"2CylinderEngine", "2CylinderEngine.glb", 0.88},
                                            ModelCase{"HRA_Kidney_Female_Left", "VH_F_Kidney_L.glb", 0.9},
                                            ModelCase{"MosquitoInAmber", "MosquitoInAmber.glb", 1.0},
-                                           ModelCase{"HRA_Female_Body", "HRA_Female_Body.glb", 0.92}),
+                                           ModelCase{"HRA_Female_Body", "HRA_Female_Body.glb", 0.95}),
                          [](const auto &info) { return std::string(info.param.folder); });
 
 TEST(LayerInferenceModels, OutermostLayerIsCapsuleAndSkin) {

@@ -59,7 +59,11 @@ Scene loadScene(std::string_view source, const SceneLoadOptions &options) {
     for (const TriangleMesh &m : scene.meshes) scene.layers.ensure(m.layer);
     for (const Sphere &s : scene.spheres) scene.layers.ensure(s.layer);
     for (const Plane &p : scene.planes) scene.layers.ensure(p.layer);
-    if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
+    if (scene.materials.empty()) {
+        Material fallback;
+        fallback.name = "default";
+        scene.materials.push_back(fallback);
+    }
     return scene;
 }
 

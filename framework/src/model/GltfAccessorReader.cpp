@@ -49,22 +49,42 @@ int indexSize(int componentType) {
 
 } // namespace
 
-std::vector<glm::vec3> GltfAccessorReader::readVec3(int accessor) const {
+std::vector<float> GltfAccessorReader::readFloats(int accessor, int components) const {
     const AccessorLayout &l = m_validator.layout(accessor);
-    std::vector<glm::vec3> out(std::size_t(l.count), glm::vec3(0.f));
-    const auto decode = [&](const unsigned char *p) {
-        glm::vec3 v;
-        for (int c = 0; c < 3; ++c)
+    const std::size_t n = std::size_t(components);
+    std::vector<float> out(std::size_t(l.count) * n, 0.f);
+    const auto decode = [&](const unsigned char *p, float *v) {
+        for (int c = 0; c < components; ++c)
             v[c] = readComponent(p + std::size_t(c * l.componentSize), l.componentType, l.normalized);
-        return v;
     };
     if (l.data)
-        for (std::size_t i = 0; i < out.size(); ++i) out[i] = decode(l.data + i * l.stride);
+        for (std::size_t i = 0; i < std::size_t(l.count); ++i) decode(l.data + i * l.stride, out.data() + i * n);
     for (std::uint64_t k = 0; k < l.sparseCount; ++k) {
         const std::uint32_t target =
             readUnsignedInteger(l.sparseIndices + k * std::uint64_t(indexSize(l.sparseIndexType)), l.sparseIndexType);
-        out[target] = decode(l.sparseValues + k * l.elemSize); // target < count: validated
+        decode(l.sparseValues + k * l.elemSize, out.data() + std::size_t(target) * n); // target < count: validated
     }
+    return out;
+}
+
+std::vector<glm::vec2> GltfAccessorReader::readVec2(int accessor) const {
+    const std::vector<float> f = readFloats(accessor, 2);
+    std::vector<glm::vec2> out(f.size() / 2);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec2(f[2 * i], f[2 * i + 1]);
+    return out;
+}
+
+std::vector<glm::vec3> GltfAccessorReader::readVec3(int accessor) const {
+    const std::vector<float> f = readFloats(accessor, 3);
+    std::vector<glm::vec3> out(f.size() / 3);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
+    return out;
+}
+
+std::vector<glm::vec4> GltfAccessorReader::readVec4(int accessor) const {
+    const std::vector<float> f = readFloats(accessor, 4);
+    std::vector<glm::vec4> out(f.size() / 4);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec4(f[4 * i], f[4 * i + 1], f[4 * i + 2], f[4 * i + 3]);
     return out;
 }
 

@@ -1,5 +1,7 @@
 #include "GltfFileSandbox_p.h"
 
+#include "GltfText_p.h"
+
 #include <fstream>
 #include <system_error>
 
@@ -8,21 +10,9 @@ namespace mvcl::gltf {
 namespace fs = std::filesystem;
 
 namespace {
-/// URIs come from the file: keep control characters (NUL included) out of error messages.
-std::string printable(const std::string &text) {
-    static const char *kHex = "0123456789abcdef";
-    std::string out;
-    for (unsigned char c : text.substr(0, 200)) {
-        if (c < 0x20 || c == 0x7f) {
-            out += "\\x";
-            out += kHex[c >> 4];
-            out += kHex[c & 15];
-        } else {
-            out += char(c);
-        }
-    }
-    return text.size() > 200 ? out + "..." : out;
-}
+/// URIs come from the file: keep control characters and raw bytes out of error messages.
+std::string printable(const std::string &text) { return printableText(text); }
+
 } // namespace
 
 GltfFileSandbox::GltfFileSandbox(const fs::path &baseDir, std::uint64_t maxBytes) : m_remainingBytes(maxBytes) {

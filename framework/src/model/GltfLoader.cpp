@@ -5,24 +5,16 @@
 ///   1. size cap; GLB header and chunk lengths checked here (tinygltf 2.7 can read up to 8 bytes
 ///      past a truncated BIN chunk); JSON nesting depth capped (tinygltf converts `extras`
 ///      recursively);
-///   2. tinygltf with image decoding off and sandboxed file access (GltfFileSandbox);
+///   2. tinygltf with its image decoders off (encoded bytes kept) and sandboxed file access
+///      (GltfFileSandbox);
 ///   3. GltfValidator: asset version, extensionsRequired, bufferView/accessor bounds in checked
 ///      uint64, sparse accessors, index accessor types, node forest (no cycles, one parent), scene;
-///   4. GltfSceneBuilder: node transforms in double, one TriangleMesh per (node, material),
+///   4. GltfMaterialBuilder: materials, and the textures they use decoded (GltfImageDecoder);
+///   5. GltfSceneBuilder: node transforms in double, one TriangleMesh per (node, material),
 ///      triangulation, normals, re-centring on the world AABB centre, lights, cameras, layers.
 ///
-/// Material mapping (glTF pbrMetallicRoughness → our Phong Material), with base = baseColorFactor,
-/// m = metallicFactor, r = roughnessFactor (all clamped to [0, 1]); textures are ignored:
-///   diffuse      = base.rgb · (1 − m)            (metals have no diffuse lobe)
-///   ambient      = diffuse
-///   specular Ks  = (1 − r) · (0.3 + 0.7·m)        (smooth → strong highlight; metals strongest)
-///   shininess Ps = clamp(2 / max(r, 0.05)⁴ − 2, 1, 1024)   (Blinn-Phong exponent of roughness r)
-///   reflectivity = m · (1 − r)                    (smooth metals mirror)
-///   transparency = KHR_materials_transmission.transmissionFactor, or 1 − base.a for alphaMode
-///                  BLEND (the larger of the two); 0 otherwise
-///   ior          = KHR_materials_ior.ior (default 1.5), clamped to [1, 10]
-///   A primitive without a material gets an appended "default" material (Material's defaults);
-///   Scene::materials is never empty.
+/// Materials and textures: GltfMaterialBuilder (the mapping is in PhongTerms.h); images are
+/// decoded by GltfImageDecoder.
 ///
 /// Lights (KHR_lights_punctual): intensity = colour · intensity (candela for point/spot, lux for
 /// directional); point lights fall off as 1/r² (constant = linear = 0, quadratic = 1); spot lights
@@ -36,7 +28,10 @@
 
 #include "GltfContext_p.h"
 #include "GltfFileSandbox_p.h"
+#include "GltfJsonPreflight_p.h"
+#include "GltfMaterialBuilder_p.h"
 #include "GltfSceneBuilder_p.h"
+#include "GltfText_p.h"
 #include "GltfValidator_p.h"
 
 #include <mvcl/core/Error.h>
@@ -110,18 +105,47 @@ void checkJsonDepth(std::span<const std::uint8_t> json, const std::string &sourc
     }
 }
 
-/// Image decoding is off: we never use textures, and decoders are attack surface.
-bool skipImage(tinygltf::Image *, const int, std::string *, std::string *, int, int, const unsigned char *, int,
-               void *) {
+/// tinygltf's own decoders stay unused: images given by URI (bytes tinygltf read through the
+/// sandbox or decoded from a data URI) are kept encoded for GltfImageDecoder, which decodes only
+/// the images materials use, with size limits. Images in a bufferView are read later from the
+/// validated buffers (tinygltf passes a pointer it has not bounds-checked: it is not touched).
+bool captureImage(tinygltf::Image *image, const int index, std::string *, std::string *, int, int,
+                  const unsigned char *bytes, int size, void *user) {
+    if (image->bufferView >= 0 || !bytes || size <= 0) return true;
+    auto &captured = *static_cast<gltf::CapturedImages *>(user);
+    captured[index].assign(bytes, bytes + size);
     return true;
 }
 
+/// tinygltf's message on one line, without raw bytes of the file it may quote.
 std::string firstLines(const std::string &text) {
     std::string out;
     std::istringstream in(text);
     std::string line;
     while (std::getline(in, line))
         if (!line.empty()) out += (out.empty() ? "" : "; ") + line;
+    return gltf::printableText(out, 400);
+}
+
+/// The file with its JSON replaced: the text itself for .gltf; for GLB a new header and JSON
+/// chunk in front of the original BIN chunk (checkGlb has checked the layout).
+std::vector<std::uint8_t> withJson(std::span<const std::uint8_t> original, bool isGlb, std::string json) {
+    if (!isGlb) return std::vector<std::uint8_t>(json.begin(), json.end());
+    while (json.size() % 4) json += ' ';
+    const std::uint64_t oldLength = readLe32(original.data() + 8);
+    const std::uint64_t binStart = 20 + std::uint64_t(readLe32(original.data() + 12));
+    const std::uint64_t binBytes = oldLength > binStart ? oldLength - binStart : 0;
+    std::vector<std::uint8_t> out;
+    const auto put32 = [&](std::uint64_t v) {
+        for (int k = 0; k < 4; ++k) out.push_back(std::uint8_t(v >> (8 * k)));
+    };
+    put32(0x46546C67u);
+    put32(2);
+    put32(12 + 8 + json.size() + binBytes);
+    put32(json.size());
+    put32(0x4E4F534Au);
+    out.insert(out.end(), json.begin(), json.end());
+    out.insert(out.end(), original.begin() + std::ptrdiff_t(binStart), original.begin() + std::ptrdiff_t(binStart + binBytes));
     return out;
 }
 
@@ -156,37 +180,62 @@ Scene loadGltfFromMemory(std::span<const std::uint8_t> bytes, const std::string 
     if (bytes.empty()) throw Error(name, "file is empty");
 
     const bool isGlb = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-    checkJsonDepth(isGlb ? checkGlb(bytes, name) : bytes, name);
+    const std::span<const std::uint8_t> json = isGlb ? checkGlb(bytes, name) : bytes;
+    checkJsonDepth(json, name);
+    // Our own read of the JSON first: names unsupported required extensions, repairs what the
+    // glTF-Validator accepts and tinygltf does not, and offers fallbacks if tinygltf refuses.
+    gltf::GltfJsonPreflight preflight(json, isGlb, name);
 
     try {
-        tinygltf::TinyGLTF parser;
-        gltf::GltfFileSandbox sandbox(baseDir, options.maxFileBytes);
-        parser.SetImageLoader(&skipImage, nullptr);
-        parser.SetFsCallbacks(sandbox.callbacks());
-
+        std::vector<std::string> repairs = preflight.warnings();
+        std::vector<std::uint8_t> rebuilt;
+        std::span<const std::uint8_t> input = bytes;
+        if (preflight.repaired()) {
+            rebuilt = withJson(bytes, isGlb, *preflight.repaired());
+            input = rebuilt;
+        }
         tinygltf::Model model;
-        std::string err, warn;
-        // base_dir "": the sandbox sees each URI as written and resolves it against baseDir itself.
-        const bool ok = isGlb ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                                                            static_cast<unsigned int>(bytes.size()), "")
-                              : parser.LoadASCIIFromString(&model, &err, &warn,
-                                                           reinterpret_cast<const char *>(bytes.data()),
-                                                           static_cast<unsigned int>(bytes.size()), "");
-        if (!sandbox.violations().empty()) throw Error(name, sandbox.violations().front());
-        if (!ok) {
+        gltf::CapturedImages images;
+        std::string err, warn, firstError;
+        for (;;) {
+            tinygltf::TinyGLTF parser;
+            gltf::GltfFileSandbox sandbox(baseDir, options.maxFileBytes);
+            model = tinygltf::Model();
+            images.clear();
+            err.clear();
+            warn.clear();
+            parser.SetImageLoader(&captureImage, &images);
+            parser.SetFsCallbacks(sandbox.callbacks());
+            // base_dir "": the sandbox sees each URI as written and resolves it against baseDir itself.
+            const bool ok = isGlb ? parser.LoadBinaryFromMemory(&model, &err, &warn, input.data(),
+                                                                static_cast<unsigned int>(input.size()), "")
+                                  : parser.LoadASCIIFromString(&model, &err, &warn,
+                                                               reinterpret_cast<const char *>(input.data()),
+                                                               static_cast<unsigned int>(input.size()), "");
+            if (!sandbox.violations().empty()) throw Error(name, sandbox.violations().front());
+            if (ok) break;
             const std::string detail = firstLines(err);
-            throw Error(name, "not a valid glTF file: " + (detail.empty() ? std::string("tinygltf failed") : detail));
+            if (firstError.empty()) firstError = detail.empty() ? std::string("tinygltf failed") : detail;
+            // Try again without the parts mvcl does not render; the geometry is what matters.
+            auto fallback = preflight.nextFallback();
+            if (!fallback) throw Error(name, "not a valid glTF file: " + firstError);
+            repairs.push_back("tinygltf refused the file (" + firstError + "); loaded without its " + fallback->second);
+            rebuilt = withJson(bytes, isGlb, std::move(fallback->first));
+            input = rebuilt;
         }
 
         Scene scene;
         scene.name = name;
+        scene.report.warnings = repairs;
         std::istringstream warnings(warn + "\n" + err); // err may hold non-fatal notes on success
         for (std::string line; std::getline(warnings, line);)
-            if (!line.empty()) scene.report.warnings.push_back("tinygltf: " + line);
+            if (!line.empty()) scene.report.warnings.push_back("tinygltf: " + gltf::printableText(line, 400));
 
         gltf::GltfContext context(model, name, scene.report);
         gltf::GltfValidator validator(context);
         validator.validate();
+        gltf::GltfMaterialBuilder materials(context, images, options, scene);
+        materials.build();
         gltf::GltfSceneBuilder builder(context, validator, options, scene);
         builder.build();
         return scene;

@@ -1,5 +1,7 @@
 #include "GltfSceneBuilder_p.h"
 
+#include "GltfTangents_p.h"
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -47,10 +49,6 @@ bool isFinite(const glm::dmat4 &m) {
 
 bool isFinite(const glm::vec3 &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-double numberOr(const tinygltf::Value &v, double fallback) {
-    return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
-}
-
 glm::vec3 toVec3(const glm::dvec3 &v) { return glm::vec3(float(v.x), float(v.y), float(v.z)); }
 
 } // namespace
@@ -61,7 +59,6 @@ GltfSceneBuilder::GltfSceneBuilder(GltfContext &context, const GltfValidator &va
       m_options(options), m_scene(scene) {}
 
 void GltfSceneBuilder::build() {
-    buildMaterials();
     m_decoded.resize(m_model.meshes.size());
     for (std::size_t m = 0; m < m_model.meshes.size(); ++m) m_decoded[m].resize(m_model.meshes[m].primitives.size());
     traverse();
@@ -69,52 +66,7 @@ void GltfSceneBuilder::build() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Materials
-
-Material GltfSceneBuilder::mapMaterial(const tinygltf::Material &src) {
-    const auto clamp01 = [](double v) { return std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.0; };
-    const auto &pbr = src.pbrMetallicRoughness;
-    glm::dvec3 base(1.0);
-    double alpha = 1.0;
-    if (pbr.baseColorFactor.size() == 4) {
-        base = glm::dvec3(clamp01(pbr.baseColorFactor[0]), clamp01(pbr.baseColorFactor[1]),
-                          clamp01(pbr.baseColorFactor[2]));
-        alpha = clamp01(pbr.baseColorFactor[3]);
-    }
-    const double metallic = clamp01(pbr.metallicFactor);
-    const double roughness = clamp01(pbr.roughnessFactor);
-
-    Material m;
-    m.name = src.name;
-    m.diffuse = toVec3(base * (1.0 - metallic));
-    m.ambient = m.diffuse;
-    // Smooth surfaces get strong highlights; metals are white-hot, dielectrics about a third.
-    m.specular = float((1.0 - roughness) * (0.3 + 0.7 * metallic));
-    // Blinn-Phong exponent equivalent to a GGX/Beckmann roughness r: 2/r⁴ − 2.
-    const double r = std::max(roughness, 0.05);
-    m.shininess = float(std::clamp(2.0 / (r * r * r * r) - 2.0, 1.0, 1024.0));
-    m.reflectivity = float(metallic * (1.0 - roughness));
-
-    double transparency = 0.0;
-    if (src.alphaMode == "BLEND") transparency = 1.0 - alpha;
-    const auto transmission = src.extensions.find("KHR_materials_transmission");
-    if (transmission != src.extensions.end())
-        transparency = std::max(transparency, clamp01(numberOr(transmission->second.Get("transmissionFactor"), 0.0)));
-    m.transparency = float(transparency);
-
-    double ior = 1.5;
-    const auto iorExt = src.extensions.find("KHR_materials_ior");
-    if (iorExt != src.extensions.end()) ior = numberOr(iorExt->second.Get("ior"), 1.5);
-    // KHR_materials_ior allows 0 ("infinitely thin"); we need ≥ 1 for Snell's law.
-    if (!std::isfinite(ior) || ior < 1.0) ior = 1.0;
-    m.ior = float(std::min(ior, 10.0));
-    return m;
-}
-
-void GltfSceneBuilder::buildMaterials() {
-    m_scene.materials.clear();
-    for (const tinygltf::Material &src : m_model.materials) m_scene.materials.push_back(mapMaterial(src));
-}
+// Materials (built before by GltfMaterialBuilder, same indices as the file's)
 
 uint32_t GltfSceneBuilder::defaultMaterial() {
     if (!m_defaultMaterial) {
@@ -305,8 +257,36 @@ const GltfSceneBuilder::DecodedPrimitive &GltfSceneBuilder::decode(int mesh, int
 
     const auto nrm = prim.attributes.find("NORMAL");
     if (nrm != prim.attributes.end()) decodeNormals(nrm->second, out);
+    decodeTextureAttributes(prim, where, out);
     out.usable = true;
     return out;
+}
+
+void GltfSceneBuilder::decodeTextureAttributes(const tinygltf::Primitive &prim, const std::string &where,
+                                               DecodedPrimitive &out) {
+    const auto read = [&](const char *semantic, int type, auto &&reader) {
+        const auto it = prim.attributes.find(semantic);
+        if (it == prim.attributes.end()) return decltype(reader(0)){};
+        if (m_model.accessors[std::size_t(it->second)].type != type) {
+            m_context.warn(where + ": " + semantic + " has the wrong accessor type; ignored");
+            return decltype(reader(0)){};
+        }
+        return reader(it->second);
+    };
+    out.texcoords0 = read("TEXCOORD_0", TINYGLTF_TYPE_VEC2, [&](int a) { return m_reader.readVec2(a); });
+    out.texcoords1 = read("TEXCOORD_1", TINYGLTF_TYPE_VEC2, [&](int a) { return m_reader.readVec2(a); });
+    out.tangents = read("TANGENT", TINYGLTF_TYPE_VEC4, [&](int a) { return m_reader.readVec4(a); });
+    for (glm::vec4 &t : out.tangents) {
+        const float len = glm::length(glm::vec3(t));
+        t = len > 0.f && std::isfinite(len) ? glm::vec4(glm::vec3(t) / len, t.w < 0.f ? -1.f : 1.f)
+                                            : glm::vec4(1.f, 0.f, 0.f, 1.f);
+    }
+    // A normal map needs tangents; glTF says to generate them when the file has none.
+    if (!out.tangents.empty() || prim.material < 0) return;
+    const tinygltf::NormalTextureInfo &normalMap = m_model.materials[std::size_t(prim.material)].normalTexture;
+    if (normalMap.index < 0) return;
+    const std::vector<glm::vec2> &uvs = normalMap.texCoord == 1 ? out.texcoords1 : out.texcoords0;
+    if (uvs.size() == out.positions.size()) out.tangents = generateTangents(out.positions, out.normals, uvs, out.triangles);
 }
 
 std::optional<int> GltfSceneBuilder::extrasLayer(const tinygltf::Value &extras, const std::string &owner) const {
@@ -386,12 +366,34 @@ void GltfSceneBuilder::instantiateMesh(int node, const glm::dmat4 &world) {
             const double len = glm::length(wn);
             pm.mesh.normals.push_back(len > 0.0 ? toVec3(wn / len) : n3);
         }
+        appendAttribute(pm.mesh.texcoords0, dp.texcoords0, base, dp.positions.size());
+        appendAttribute(pm.mesh.texcoords1, dp.texcoords1, base, dp.positions.size());
+        std::vector<glm::vec4> tangents = dp.tangents;
+        for (glm::vec4 &t : tangents) {
+            const glm::dvec3 wt = linear * glm::dvec3(glm::vec3(t));
+            const double len = glm::length(wt);
+            // A mirroring transform flips the handedness of the (normal, tangent, bitangent) frame.
+            t = glm::vec4(len > 0.0 ? toVec3(wt / len) : glm::vec3(t), flip ? -t.w : t.w);
+        }
+        appendAttribute(pm.mesh.tangents, tangents, base, dp.positions.size());
         for (glm::uvec3 t : dp.triangles) {
             t += glm::uvec3(base);
             if (flip) std::swap(t.y, t.z);
             pm.mesh.indices.push_back(t);
         }
     }
+}
+
+template <typename T>
+void GltfSceneBuilder::appendAttribute(std::vector<T> &mesh, const std::vector<T> &primitive, std::size_t base,
+                                       std::size_t count) {
+    // Merged primitives that disagree on having the attribute: the missing ones are zeros.
+    if (mesh.empty() && primitive.empty()) return;
+    mesh.resize(base, T(0.f));
+    if (primitive.size() == count)
+        mesh.insert(mesh.end(), primitive.begin(), primitive.end());
+    else
+        mesh.resize(base + count, T(0.f));
 }
 
 // ---------------------------------------------------------------------------------------------

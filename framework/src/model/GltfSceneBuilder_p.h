@@ -27,9 +27,6 @@ public:
 
     void build();
 
-    /// The pbrMetallicRoughness → Phong mapping documented at the top of GltfLoader.cpp.
-    static Material mapMaterial(const tinygltf::Material &material);
-
 private:
     /// One mesh primitive decoded once in its own (object) space and shared by every instance.
     struct DecodedPrimitive {
@@ -38,6 +35,8 @@ private:
         std::vector<glm::vec3> positions;
         std::vector<glm::vec3> normals; ///< empty or unit, one per position
         std::vector<glm::uvec3> triangles; ///< non-degenerate, counter-clockwise
+        std::vector<glm::vec2> texcoords0, texcoords1; ///< empty or one per position
+        std::vector<glm::vec4> tangents; ///< empty or one per position (read, or generated for normal maps)
         std::size_t degenerate = 0;
     };
     /// A TriangleMesh under construction; world positions stay in double until re-centring.
@@ -54,7 +53,6 @@ private:
         glm::dvec3 position;
     };
 
-    void buildMaterials();
     uint32_t defaultMaterial();
     glm::dmat4 localTransform(int node);
     void traverse();
@@ -63,6 +61,10 @@ private:
     void addLight(int node, const glm::dmat4 &world);
     const DecodedPrimitive &decode(int mesh, int primitive);
     void decodeNormals(int accessor, DecodedPrimitive &out);
+    void decodeTextureAttributes(const tinygltf::Primitive &prim, const std::string &where, DecodedPrimitive &out);
+    template <typename T>
+    static void appendAttribute(std::vector<T> &mesh, const std::vector<T> &primitive, std::size_t base,
+                                std::size_t count);
     std::optional<int> extrasLayer(const tinygltf::Value &extras, const std::string &owner) const;
     void assignLayer(TriangleMesh &mesh, int node);
     void finish();

@@ -31,13 +31,18 @@ const std::set<std::string> &supportedRequiredExtensions() {
         "KHR_materials_transmission", // mapped to transparency
         "KHR_materials_ior",          // mapped to ior
         "KHR_mesh_quantization",      // integer positions/normals are decoded generically
-        "KHR_texture_transform",      // textures are not used, so transforms are irrelevant
+        "KHR_texture_transform",      // applied to texture coordinates
+        "KHR_materials_emissive_strength", // scales emission
     };
     return kSupported;
 }
 
 
 } // namespace
+
+bool GltfValidator::isSupportedRequiredExtension(const std::string &name) {
+    return supportedRequiredExtensions().count(name) != 0;
+}
 
 std::uint32_t readUnsignedInteger(const unsigned char *p, int componentType) {
     switch (componentType) {

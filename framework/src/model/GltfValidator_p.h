@@ -35,6 +35,9 @@ public:
     /// Runs every check; throws mvcl::Error (via the context) on the first problem.
     void validate();
 
+    /// True for extensions a file may require: those mvcl implements or can ignore.
+    static bool isSupportedRequiredExtension(const std::string &name);
+
     const AccessorLayout &layout(int accessor) const { return m_layouts[std::size_t(accessor)]; }
     /// "accessor 3 (POSITION of mesh 'Cube')": for error messages.
     std::string describeAccessor(int accessor) const;

@@ -6,6 +6,7 @@
 #include <mvcl/tracer/Tracer.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <vector>
@@ -55,11 +56,34 @@ bool directionBlocked(const PeelState &state, const glm::vec3 &origin, const glm
     return false;
 }
 
-bool isEnclosed(const PeelState &state, const glm::vec3 &p, uint32_t self) {
-    static const glm::vec3 kDirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    for (const glm::vec3 &d : kDirs)
-        if (!directionBlocked(state, p, d, self)) return false;
-    return true;
+/// The six axis directions, then Fibonacci points on the sphere up to `count` (deterministic).
+std::vector<glm::vec3> sampleDirections(int count) {
+    std::vector<glm::vec3> dirs = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    const int extra = std::max(count, 6) - 6;
+    const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < extra; ++i) {
+        const double z = 1.0 - (2.0 * i + 1.0) / double(extra);
+        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+        const double phi = golden * i;
+        dirs.emplace_back(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
+    }
+    return dirs;
+}
+
+bool isEnclosed(const PeelState &state, const std::vector<glm::vec3> &dirs, float hiddenFraction,
+                const glm::vec3 &p, uint32_t self) {
+    // Stop as soon as the answer is known: too many open rays, or enough blocked ones.
+    const int needed = int(std::ceil(hiddenFraction * float(dirs.size()) - 1e-4f));
+    int blocked = 0, open = 0;
+    const int allowedOpen = int(dirs.size()) - needed;
+    for (const glm::vec3 &d : dirs) {
+        if (directionBlocked(state, p, d, self)) {
+            if (++blocked >= needed) return true;
+        } else if (++open > allowedOpen) {
+            return false;
+        }
+    }
+    return blocked >= needed;
 }
 
 /// Centroids of up to `count` triangles at evenly spaced indices over the part's triangles
@@ -119,17 +143,22 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
 
     const int firstLayer = std::clamp(settings.firstLayer, 0, kMaxLayers - 1);
     std::vector<int> assigned(parts.size(), -1);
+    std::vector<float> confidence(parts.size(), 0.f);
     {
         // The tracer reads the scene; layers are written back only after it is gone.
         const Tracer tracer(scene);
         std::vector<char> active(meshCount, 0);
         std::vector<float> fraction(parts.size(), 0.f);
         PeelState state{&tracer, &partOf, &active};
+        const std::vector<glm::vec3> directions = sampleDirections(settings.directions);
 
         int layer = firstLayer;
         while (!remaining.empty()) {
             if (layer == kMaxLayers - 1) { // out of layers: everything left is innermost
-                for (uint32_t p : remaining) assigned[p] = layer;
+                for (uint32_t p : remaining) {
+                    assigned[p] = layer;
+                    confidence[p] = 0.f;
+                }
                 break;
             }
             // Active = not yet peeled, or preset meshes of this layer or deeper.
@@ -143,7 +172,8 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
                 const uint32_t p = remaining[k];
                 const auto &points = parts[p].samples;
                 std::size_t enclosed = 0;
-                for (const glm::vec3 &pt : points) enclosed += isEnclosed(state, pt, p) ? 1 : 0;
+                for (const glm::vec3 &pt : points)
+                    enclosed += isEnclosed(state, directions, settings.hiddenFraction, pt, p) ? 1 : 0;
                 fraction[p] = points.empty() ? 0.f : float(enclosed) / float(points.size());
             });
 
@@ -164,7 +194,11 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
                 for (uint32_t p : remaining)
                     if (fraction[p] == least) peel.push_back(p);
             }
-            for (uint32_t p : peel) assigned[p] = layer;
+            const float threshold = std::max(settings.enclosedFraction, 1e-6f);
+            for (uint32_t p : peel) {
+                assigned[p] = layer;
+                confidence[p] = std::clamp((threshold - fraction[p]) / threshold, 0.f, 1.f);
+            }
             std::erase_if(remaining, [&](uint32_t p) { return assigned[p] >= 0; });
             ++layer;
         }
@@ -177,6 +211,7 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
         TriangleMesh &mesh = scene.meshes[i];
         mesh.layer = layer;
         mesh.layerSource = LayerSource::Inferred;
+        mesh.layerConfidence = confidence[partOf[i]];
         scene.layers.ensure(layer);
         layers.insert(layer);
         ++result.meshesAssigned;

@@ -1,5 +1,7 @@
 #include <mvcl/tracer/WhittedIntegrator.h>
 
+#include "MaterialEvaluator.h"
+
 #include <mvcl/core/FloatBits.h>
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/RayOffset.h>
@@ -17,6 +19,9 @@ namespace {
 // Hard ceiling on recursion whatever a policy asks for: keeps the stack bounded (facing mirrors).
 constexpr int kDepthCeiling = 64;
 
+// Alpha-masked hits a ray skips before it gives up and takes the background (foliage cards).
+constexpr int kMaxCutOutHits = 64;
+
 bool isFinite(const glm::vec3 &c) {
     return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
 }
@@ -24,18 +29,10 @@ bool isFinite(const glm::vec3 &c) {
 /// Schlick's approximation of dielectric Fresnel reflectance. cosTheta is the cosine on the
 /// side of the lower index (the larger angle), as Schlick requires.
 float schlickFresnel(float cosTheta, float ior) {
+    if (ior == 1.f) return 0.f; // no interface (glTF BLEND without transmission): nothing reflects
     const float r0 = ((1.f - ior) / (1.f + ior)) * ((1.f - ior) / (1.f + ior));
     const float m = std::clamp(1.f - cosTheta, 0.f, 1.f);
     return r0 + (1.f - r0) * m * m * m * m * m;
-}
-
-uint32_t materialOf(const Scene &scene, const Hit &hit) {
-    switch (hit.kind) {
-    case GeometryKind::Triangle: return scene.meshes[hit.geometry].material;
-    case GeometryKind::Sphere: return scene.spheres[hit.geometry].material;
-    case GeometryKind::Plane: return scene.planes[hit.geometry].material;
-    }
-    return 0;
 }
 
 /// The layer the tracer files a geometry under (it clamps out-of-range layers the same way).
@@ -52,10 +49,15 @@ void countRay(RayType type, RayCounters &counters) {
 
 } // namespace
 
-WhittedIntegrator::WhittedIntegrator(const Tracer &tracer) : m_tracer(tracer) {
+WhittedIntegrator::WhittedIntegrator(const Tracer &tracer)
+    : m_tracer(tracer), m_materials(std::make_unique<detail::MaterialEvaluator>(tracer.scene())) {
     const Scene &scene = tracer.scene();
-    for (const Material &m : scene.materials)
-        if (m.transparency > 0.f) m_hasTransparentMaterials = true;
+    for (const Material &m : scene.materials) {
+        // "> 0" here, "not ≤ 0" per layer below: a NaN transparency never forces the walk.
+        if (m.transparency > 0.f || (m.alphaMode == AlphaMode::Blend && m.mayTransmit()))
+            m_hasTransparentMaterials = true;
+        if (m.mayCutOut()) m_hasCutOutMaterials = true;
+    }
     // Per layer, what its geometry's materials may do. "Not ≤ 0" rather than "> 0" mirrors the
     // tests in trace(), so that a NaN weight counts as one that may be needed.
     auto addGeometry = [&](int layer, uint32_t material) {
@@ -64,12 +66,15 @@ WhittedIntegrator::WhittedIntegrator(const Tracer &tracer) : m_tracer(tracer) {
         // An index past the table is not expected from a loader; assume it may do anything.
         const bool known = material < scene.materials.size();
         if (!known || !(scene.materials[material].reflectivity <= 0.f)) m_layersWithReflectiveMaterial |= bit;
-        if (!known || !(scene.materials[material].transparency <= 0.f)) m_layersWithTransmissiveMaterial |= bit;
+        if (!known || scene.materials[material].mayTransmit()) m_layersWithTransmissiveMaterial |= bit;
+        if (!known || scene.materials[material].mayCutOut()) m_layersWithCutOutMaterial |= bit;
     };
     for (const TriangleMesh &mesh : scene.meshes) addGeometry(mesh.layer, mesh.material);
     for (const Sphere &sphere : scene.spheres) addGeometry(sphere.layer, sphere.material);
     for (const Plane &plane : scene.planes) addGeometry(plane.layer, plane.material);
 }
+
+WhittedIntegrator::~WhittedIntegrator() = default;
 
 IntegratorPlan WhittedIntegrator::plan(const RayPolicy &policy, StageSelection selection) const {
     const ShadingPolicy &shading = policy.shading;
@@ -77,7 +82,8 @@ IntegratorPlan WhittedIntegrator::plan(const RayPolicy &policy, StageSelection s
     if (!shading.shadows || m_tracer.scene().lights.empty())
         plan.forcedShadows = ShadowStage::Off;
     else
-        plan.forcedShadows = m_hasTransparentMaterials ? ShadowStage::TransparentWalk : ShadowStage::AnyHit;
+        plan.forcedShadows = m_hasTransparentMaterials || m_hasCutOutMaterials ? ShadowStage::TransparentWalk
+                                                                               : ShadowStage::AnyHit;
     plan.shadows = plan.forcedShadows;
     if (selection == StageSelection::ForceAll) return plan; // every stage, every colour map
 
@@ -89,7 +95,7 @@ IntegratorPlan WhittedIntegrator::plan(const RayPolicy &policy, StageSelection s
         const uint32_t casters = m_layersWithGeometry & shadowQuery.layerMask;
         if (casters == 0 || shadowQuery.tMin > shadowQuery.tMax)
             plan.shadows = ShadowStage::Unoccluded;
-        else if ((casters & m_layersWithTransmissiveMaterial) == 0)
+        else if ((casters & (m_layersWithTransmissiveMaterial | m_layersWithCutOutMaterial)) == 0)
             // Every possible occluder is opaque: the walk would stop at its first hit with 0,
             // which is exactly the any-hit answer.
             plan.shadows = ShadowStage::AnyHit;
@@ -120,12 +126,11 @@ float WhittedIntegrator::lightPassing(const Ray &shadowRay, float lightDistance,
     // Transparent occluders let their transparency through (Whitted's transparent shadows):
     // walk the hits along the same ray, each step starting just past the previous hit.
     constexpr int kMaxOccluders = 16;
-    const Scene &scene = m_tracer.scene();
     float passed = 1.f;
     for (int i = 0; i < kMaxOccluders; ++i) {
         Hit hit;
         if (!m_tracer.closestHit(shadowRay, query, hit)) return passed;
-        passed *= std::clamp(scene.materials[materialOf(scene, hit)].transparency, 0.f, 1.f);
+        passed *= m_materials->transmittance(hit);
         if (passed <= 0.f) return 0.f;
         query.tMin = nextFloatUp(hit.t);
         if (query.tMin > query.tMax) return passed;
@@ -153,24 +158,40 @@ glm::vec3 WhittedIntegrator::radiance(const Ray &primaryRay, const RayPolicy &po
     return glm::vec3(0.f);
 }
 
+bool WhittedIntegrator::closestVisibleHit(const Ray &ray, const RayQuery &query, Hit &hit) const {
+    if (!m_tracer.closestHit(ray, query, hit)) return false;
+    if (!m_hasCutOutMaterials || !m_materials->isCutOut(hit)) return true;
+    // A masked-out hit is not there: look again just past it.
+    RayQuery next = query;
+    for (int i = 0; i < kMaxCutOutHits; ++i) {
+        next.tMin = nextFloatUp(hit.t);
+        if (next.tMin > next.tMax || !m_tracer.closestHit(ray, next, hit)) return false;
+        if (!m_materials->isCutOut(hit)) return true;
+    }
+    return false;
+}
+
 glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, const RayPolicy &policy,
                                    const IntegratorPlan &plan, RayCounters &counters) const {
     const Scene &scene = m_tracer.scene();
     countRay(type, counters);
     Hit hit;
-    if (!m_tracer.closestHit(ray, policy.query(type), hit)) return scene.background;
+    if (!closestVisibleHit(ray, policy.query(type), hit)) return scene.background;
 
     const SurfaceInteraction si = m_tracer.interaction(ray, hit);
-    const Material &m = scene.materials[si.material];
     const glm::vec3 d = glm::normalize(ray.direction);
+    // The ray cone's width where it meets the surface picks the texture level.
+    const float coneWidth = ray.coneWidth + ray.coneSpread * hit.t * glm::length(ray.direction);
+    const detail::ShadedSurface surface = m_materials->evaluate(hit, si, d, coneWidth);
+    const PhongTerms &m = surface.phong;
 
     // Light the side the ray arrived on; remember whether it is entering the surface.
     const bool entering = glm::dot(si.geometricNormal, d) < 0.f;
     const glm::vec3 ng = entering ? si.geometricNormal : -si.geometricNormal;
-    glm::vec3 ns = entering ? si.shadingNormal : -si.shadingNormal;
+    glm::vec3 ns = entering ? surface.shadingNormal : -surface.shadingNormal;
     if (glm::dot(ns, ng) < 0.f) ns = ng;
 
-    // Eq. 1: A + Σ I·(P·(L·N) + Ks·(N·H)^Ps) / D
+    // Eq. 1: A + Σ I·(P·(L·N) + Ks·S·(N·H)^Ps) / D
     glm::vec3 local = m.ambient * scene.ambientLight;
     const ShadingPolicy &shading = policy.shading;
     for (const Light &light : scene.lights) {
@@ -209,14 +230,15 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
         const glm::vec3 h = glm::normalize(toLight - d);
         const float nDotH = std::max(glm::dot(ns, h), 0.f);
         const float specular = m.specular > 0.f ? m.specular * std::pow(nDotH, m.shininess) : 0.f;
-        local += transmittance * light.intensity * (m.diffuse * nDotL + glm::vec3(specular)) /
+        local += transmittance * light.intensity * (m.diffuse * nDotL + specular * m.specularColor) /
                  attenuation;
     }
 
     const int maxDepth = std::min(shading.maxDepth, kDepthCeiling);
-    float reflectWeight = shading.reflections ? m.reflectivity : 0.f;
-    float refractWeight = shading.refractions ? m.transparency : 0.f;
-    glm::vec3 color = local * (1.f - std::clamp(m.transparency, 0.f, 1.f));
+    const float reflectivity = shading.reflections ? m.reflectivity : 0.f;
+    float reflectWeight = reflectivity;
+    float refractWeight = shading.refractions ? surface.transparency : 0.f;
+    glm::vec3 color = local * (1.f - std::clamp(surface.transparency, 0.f, 1.f)) + surface.emission;
     if ((plan.secondaryRayTypes & rayTypeBit(type)) == 0) {
         ++counters.skippedSecondaryChecks;
         return color;
@@ -226,7 +248,7 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
     const float cosI = -glm::dot(ns, d);
     glm::vec3 refracted(0.f);
     if (refractWeight > 0.f) {
-        const float eta = entering ? 1.f / m.ior : m.ior; // n_from / n_to
+        const float eta = entering ? 1.f / surface.ior : surface.ior; // n_from / n_to
         const float k = 1.f - eta * eta * (1.f - cosI * cosI);
         if (k < 0.f) {
             // Total internal reflection: everything the surface would transmit is reflected.
@@ -234,18 +256,25 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
             refractWeight = 0.f;
         } else {
             const float cosT = std::sqrt(k);
-            const float fresnel = schlickFresnel(entering ? cosI : cosT, m.ior);
+            const float fresnel = schlickFresnel(entering ? cosI : cosT, surface.ior);
             reflectWeight += refractWeight * fresnel;
             refractWeight *= 1.f - fresnel;
             const glm::vec3 t = glm::normalize(eta * d + (eta * cosI - cosT) * ns);
-            const Ray refractRay{offsetRayOrigin(si.position, si.positionError, ng, t), t};
+            Ray refractRay{offsetRayOrigin(si.position, si.positionError, ng, t), t};
+            refractRay.coneWidth = coneWidth;
+            refractRay.coneSpread = ray.coneSpread;
             refracted = trace(refractRay, RayType::Refraction, depth + 1, policy, plan, counters);
         }
     }
     if (reflectWeight > 0.f) {
         const glm::vec3 r = d - 2.f * glm::dot(ns, d) * ns;
-        const Ray reflectRay{offsetRayOrigin(si.position, si.positionError, ng, r), r};
-        color += reflectWeight * trace(reflectRay, RayType::Reflection, depth + 1, policy, plan, counters);
+        Ray reflectRay{offsetRayOrigin(si.position, si.positionError, ng, r), r};
+        reflectRay.coneWidth = coneWidth;
+        reflectRay.coneSpread = ray.coneSpread;
+        // Metals tint what they mirror; the Fresnel share of a transmissive surface stays white.
+        const glm::vec3 tint = glm::mix(glm::vec3(1.f), m.specularColor,
+                                        reflectWeight > 0.f ? std::clamp(reflectivity / reflectWeight, 0.f, 1.f) : 0.f);
+        color += reflectWeight * tint * trace(reflectRay, RayType::Reflection, depth + 1, policy, plan, counters);
     }
     return color + refractWeight * refracted;
 }

@@ -17,6 +17,11 @@ struct GltfLoadOptions {
     LayerRules layerRules;
     /// Files larger than this are rejected before parsing (bytes).
     std::uint64_t maxFileBytes = 1ull << 30;
+    /// Images with more pixels than this are not decoded (decompression bombs): the material's
+    /// factor is used, with a warning. 2²⁶ = 8192 × 8192.
+    std::uint64_t maxTexturePixels = 1ull << 26;
+    /// All decoded images of one file with their mip chains stay below this many bytes.
+    std::uint64_t maxTextureBytes = 1ull << 30;
 };
 
 /// Loads a glTF file. Meshes get their layer from `extras.layer` (node, then mesh), then from

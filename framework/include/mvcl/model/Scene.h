@@ -11,6 +11,7 @@
 #include <mvcl/model/Material.h>
 #include <mvcl/model/Plane.h>
 #include <mvcl/model/Sphere.h>
+#include <mvcl/model/Texture.h>
 #include <mvcl/model/TriangleMesh.h>
 
 #include <glm/vec3.hpp>
@@ -27,6 +28,8 @@ struct LoadReport {
     std::size_t degenerateTrianglesDropped = 0;
     std::size_t nonUnitNormalsFixed = 0;
     std::size_t primitivesSkipped = 0; ///< points and lines
+    std::size_t texturesDecoded = 0;   ///< images decoded into textures
+    std::size_t textureBytes = 0;      ///< memory held by decoded images and their mip chains
 };
 
 struct Scene {
@@ -35,6 +38,7 @@ struct Scene {
     std::vector<Sphere> spheres;
     std::vector<Plane> planes;
     std::vector<Material> materials; ///< never empty after a loader has run
+    std::vector<Texture> textures;   ///< indexed by TextureRef::texture
     std::vector<Light> lights;
     glm::vec3 ambientLight{0.1f};
     glm::vec3 background{0.05f, 0.06f, 0.08f};

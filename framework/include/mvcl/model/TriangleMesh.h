@@ -3,7 +3,9 @@
 /// A triangle mesh as in the paper: a vertex list plus a triangle index list, in scene space
 /// (node transforms already applied, in double, then re-centred on Scene::worldFromScene).
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstdint>
 #include <string>
@@ -27,9 +29,19 @@ struct TriangleMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;  ///< empty, or one unit normal per position
     std::vector<glm::uvec3> indices; ///< triangles, counter-clockwise = front
+    /// Texture coordinates (glTF TEXCOORD_0 and TEXCOORD_1): empty, or one per position.
+    std::vector<glm::vec2> texcoords0;
+    std::vector<glm::vec2> texcoords1;
+    /// Tangent-space frames for normal maps: empty, or one per position, xyz unit and
+    /// perpendicular to the normal, w = ±1 the handedness (bitangent = w · normal × tangent).
+    std::vector<glm::vec4> tangents;
     uint32_t material = 0;           ///< index into Scene::materials
     int layer = 0;
     LayerSource layerSource = LayerSource::Unassigned;
+    /// For LayerSource::Inferred, how clearly the mesh's part was seen from outside when it was
+    /// peeled, 0..1: 1 = none of its samples enclosed, 0 = at the threshold (or peeled only
+    /// because everything left enclosed everything else). 1 for the other sources.
+    float layerConfidence = 1.f;
     int sourceNode = -1; ///< glTF node index, -1 for built-in geometry
     int sourceMesh = -1; ///< glTF mesh index, -1 for built-in geometry
 };

@@ -1,9 +1,11 @@
 #pragma once
 /// \file LayerInference.h
-/// Automatic layers by containment ("onion peeling"): meshes that are not enclosed by the others
-/// form layer k; remove them and repeat for k + 1. A sample point on a mesh is enclosed when rays
-/// along all six axis directions hit some other remaining mesh; a mesh is enclosed when at least
-/// `enclosedFraction` of its samples are.
+/// Automatic layers by containment and visibility ("onion peeling"): meshes that are not enclosed
+/// by the others form layer k; remove them and repeat for k + 1. A sample point on a mesh is
+/// enclosed when at least `hiddenFraction` of the rays cast from it in `directions` directions hit
+/// some other remaining mesh (so a bone that shows through a joint from a few directions is still
+/// "mostly hidden", hence deeper); a mesh is enclosed when at least `enclosedFraction` of its
+/// samples are. Each inferred mesh gets a confidence (TriangleMesh::layerConfidence).
 
 #include <cstddef>
 
@@ -14,6 +16,12 @@ struct Scene;
 struct LayerInferenceSettings {
     int samplesPerMesh = 64;        ///< triangle centroids sampled per mesh
     float enclosedFraction = 0.6f;  ///< share of enclosed samples that makes a mesh "inside"
+    /// Rays cast from each sample: the six axis directions, then more spread evenly over the
+    /// sphere (Fibonacci points) up to this count.
+    int directions = 26;
+    /// A sample is enclosed when at least this share of its rays hit another remaining mesh
+    /// (1 = all of them: a sample seen from outside along any direction is not enclosed).
+    float hiddenFraction = 0.9f;
     int firstLayer = 0;             ///< layer given to the outermost peel
 };
 

@@ -13,16 +13,25 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <memory>
 
 namespace mvcl {
 
 class Tracer;
+struct Hit;
+struct RayQuery;
+namespace detail {
+class MaterialEvaluator;
+}
 
 class WhittedIntegrator {
 public:
     /// Reads the scene's layers and materials once (O(meshes + spheres + planes + materials)),
     /// so that plan() costs a few mask operations.
     explicit WhittedIntegrator(const Tracer &tracer);
+    ~WhittedIntegrator();
+    WhittedIntegrator(const WhittedIntegrator &) = delete;
+    WhittedIntegrator &operator=(const WhittedIntegrator &) = delete;
 
     /// The stages `policy` needs in this scene. Compute it once per policy and render pass and
     /// pass it to every radiance() call under that policy.
@@ -40,11 +49,16 @@ private:
     glm::vec3 trace(const Ray &ray, RayType type, int depth, const RayPolicy &policy,
                     const IntegratorPlan &plan, RayCounters &counters) const;
 
+    /// closestHit() that skips hits an alpha mask cuts out.
+    bool closestVisibleHit(const Ray &ray, const RayQuery &query, Hit &hit) const;
+
     /// Share of a light's intensity (0..1) that reaches the shadow ray's origin.
     float lightPassing(const Ray &shadowRay, float lightDistance, const RayPolicy &policy,
                        ShadowStage stage, RayCounters &counters) const;
 
     const Tracer &m_tracer;
+    /// Textures and alpha of materials at a hit (MaterialEvaluator.cpp).
+    std::unique_ptr<detail::MaterialEvaluator> m_materials;
     /// Some material of the scene (used or not) has transparency > 0: forcing every stage walks
     /// every shadow ray's occluders then.
     bool m_hasTransparentMaterials = false;
@@ -55,6 +69,11 @@ private:
     /// Layers with geometry whose material may transmit (transparency not ≤ 0): the only ones
     /// that can pass light into a shadow or spawn refracted rays.
     uint32_t m_layersWithTransmissiveMaterial = 0;
+    /// Some material of the scene has an alpha mask that may cut hits out.
+    bool m_hasCutOutMaterials = false;
+    /// Layers with geometry whose material may be cut out by an alpha mask: shadow rays must
+    /// walk past their hits.
+    uint32_t m_layersWithCutOutMaterial = 0;
 };
 
 } // namespace mvcl
