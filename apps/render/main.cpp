@@ -240,6 +240,12 @@ int run(const RenderCommandLine &cl) {
     base.query(RayType::Primary).layerMask = setup.session.visibleLayers;
     session.setBasePolicy(base);
     session.setLensStack(lenses);
+    // Too many overlapping clip volumes would render a wrong cut; say so instead of rendering.
+    LensContext lensContext = LensContext::forScene(scene);
+    lensContext.camera = {"", camera.eye(), camera.target(), camera.up(), camera.verticalFovDegrees()};
+    lensContext.imageWidth = cl.width;
+    lensContext.imageHeight = cl.height;
+    LensStack::checkClipVolumes(lenses.compose(lensContext, base));
     ProgressBar bar(cl.progress && isatty(STDERR_FILENO));
     session.setProgressCallback([&](float f) { bar.update(f); });
     const RenderPassStats stats = session.renderUntilIdle();

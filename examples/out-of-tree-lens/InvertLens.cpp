@@ -27,7 +27,8 @@ public:
     InvertLens() : Lens(kInvertLensInfo) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &,
+                                const LensContext &) const override {
         const float amount = float(properties.real("amount"));
         LensContribution contribution;
         contribution.color.matrix = (1.f - 2.f * amount) * glm::mat3(1.f);

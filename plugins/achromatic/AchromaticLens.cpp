@@ -29,7 +29,7 @@ public:
     AchromaticLens() : Lens(kAchromaticLensInfo) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &, const LensContext &) const override {
         const float amount = float(properties.real("amount"));
         const glm::vec3 luma{0.2126f, 0.7152f, 0.0722f};
         // glm is column-major: column j holds input channel j's weight in every output channel.

@@ -37,7 +37,7 @@ public:
     LayerLens() : Lens(kLayerLensInfo) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &, const LensContext &) const override {
         LensContribution contribution;
         // Every ray type gets the mask; Lens keeps only the types in "rays".
         for (RayQuery &query : contribution.visibility) query.layerMask = properties.layers("layers");

@@ -29,7 +29,7 @@ public:
     MagnifierLens() : Lens(kMagnifierLensInfo) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &region) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &region, const LensContext &) const override {
         const float scale = float(1.0 / properties.real("magnification"));
         const glm::vec2 center = region.center();
         LensContribution contribution;

@@ -40,7 +40,7 @@ public:
     ShadowLens() : Lens(kShadowLensInfo) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &, const LensContext &) const override {
         const std::string &mode = properties.choice("mode");
         LensContribution contribution;
         contribution.visibility[size_t(RayType::Shadow)].layerMask = properties.layers("casters");

@@ -111,7 +111,7 @@ TEST(RenderLensCli, BadLensSpecsExitTwoWithOneLineNamingTheProblem) {
         {"layer:strenght=1", "strenght"},
         {"nosuchlens:amount=1", "nosuchlens"},
         {"layer:center=[0.5,0.5", "'[' without ']'"},
-        {"layer:size=[0,0.3]", "size"},
+        {"layer:size=[-0.1,0.3]", "size"},
         {"achromatic:amount=2", "amount"},
     };
     for (const auto &c : cases) {

@@ -1,6 +1,7 @@
 #pragma once
 /// \file LensContribution.h
-/// What one lens asks of the pixels under it, as plain data, one part per stage of BRIEF §3.
+/// What one lens asks of the pixels under it, as plain data, one part per stage of a pixel's
+/// rendering: ray shaping, visibility, shading, colour.
 /// The lens stack folds contributions onto the base policy (see PolicyComposition.h); the
 /// renderer never calls into a lens.
 
@@ -47,6 +48,13 @@ struct LensContribution {
     LensContribution restrictedTo(uint8_t rayTypes) const;
     /// True when applying it changes no policy.
     bool isIdentity() const;
+    bool operator==(const LensContribution &other) const = default;
+    /// Throws mvcl::Error("contribution", problem) unless every number is finite, ray shaping is
+    /// an invertible affine map, every t-range has 0 ≤ tMin ≤ tMax, every clip volume is valid
+    /// (ClipVolume::isValid), shadow strength lies in [0, 1], the tint is ≥ 0 and maxDepth ≥ 0.
+    /// Lens::commit() calls it, so that a bad contribution is an error at commit, never on the
+    /// render path.
+    void validate() const;
 };
 
 } // namespace mvcl
