@@ -31,17 +31,24 @@ void ShadingOverride::applyTo(ShadingPolicy &shading) const {
     if (reflections) shading.reflections = *reflections;
     if (refractions) shading.refractions = *refractions;
     if (maxDepth) shading.maxDepth = *maxDepth;
+    if (layerOpacity) shading.layerOpacity = *layerOpacity;
+    if (edgeOpacity) shading.edgeOpacity = *edgeOpacity;
 }
 
 bool ShadingOverride::isEmpty() const {
-    return !shadows && !shadowStrength && !shadowTint && !reflections && !refractions && !maxDepth;
+    return !shadows && !shadowStrength && !shadowTint && !reflections && !refractions && !maxDepth &&
+           !layerOpacity && !edgeOpacity;
 }
 
 LensContribution LensContribution::restrictedTo(uint8_t rayTypes) const {
     LensContribution restricted = *this;
     for (int type = 0; type < kRayTypeCount; ++type)
         if (!includes(rayTypes, RayType(type))) restricted.visibility[size_t(type)] = RayQuery{};
-    if (!includes(rayTypes, RayType::Primary)) restricted.sampleFromScreen = glm::mat3(1.f);
+    if (!includes(rayTypes, RayType::Primary)) {
+        restricted.sampleFromScreen = glm::mat3(1.f);
+        restricted.shading.layerOpacity.reset(); // the opacity stage acts on primary hits
+        restricted.shading.edgeOpacity.reset();
+    }
     if (!includes(rayTypes, RayType::Shadow)) {
         restricted.shading.shadows.reset();
         restricted.shading.shadowStrength.reset();
@@ -81,6 +88,11 @@ void LensContribution::validate() const {
     if (shading.shadowTint && !(isFinite(*shading.shadowTint) && glm::all(glm::greaterThanEqual(*shading.shadowTint, glm::vec3(0.f)))))
         fail("shadow tint must be finite and ≥ 0");
     if (shading.maxDepth && *shading.maxDepth < 0) fail("maxDepth must be ≥ 0");
+    if (shading.layerOpacity)
+        for (float opacity : *shading.layerOpacity)
+            if (!(opacity >= 0.f && opacity <= 1.f)) fail("layer opacities must lie in [0, 1]");
+    if (shading.edgeOpacity && !(*shading.edgeOpacity >= 0.f && *shading.edgeOpacity <= 1.f))
+        fail("edge opacity must lie in [0, 1]");
     if (!isFinite(color.matrix) || !isFinite(color.offset)) fail("the colour map is not finite");
 }
 

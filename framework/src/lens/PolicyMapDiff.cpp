@@ -44,6 +44,8 @@ uint64_t renderHash(const PixelPolicy &p) {
     addFloat(s.shadowStrength);
     addVec3(s.shadowTint);
     add(uint32_t(s.maxDepth));
+    for (float opacity : s.layerOpacity) addFloat(opacity);
+    addFloat(s.edgeOpacity);
     addMat3(p.ray.color.matrix);
     addVec3(p.ray.color.offset);
     addMat3(p.sampleFromScreen);

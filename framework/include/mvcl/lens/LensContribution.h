@@ -23,6 +23,9 @@ struct ShadingOverride {
     std::optional<bool> reflections;
     std::optional<bool> refractions;
     std::optional<int> maxDepth;
+    /// The opacity stage (primary rays): see ShadingPolicy::layerOpacity and edgeOpacity.
+    std::optional<std::array<float, kMaxLayers>> layerOpacity;
+    std::optional<float> edgeOpacity;
 
     void applyTo(ShadingPolicy &shading) const;
     bool isEmpty() const;
@@ -51,7 +54,8 @@ struct LensContribution {
     bool operator==(const LensContribution &other) const = default;
     /// Throws mvcl::Error("contribution", problem) unless every number is finite, ray shaping is
     /// an invertible affine map, every t-range has 0 ≤ tMin ≤ tMax, every clip volume is valid
-    /// (ClipVolume::isValid), shadow strength lies in [0, 1], the tint is ≥ 0 and maxDepth ≥ 0.
+    /// (ClipVolume::isValid), shadow strength, layer opacities and edge opacity lie in [0, 1], the
+    /// tint is ≥ 0 and maxDepth ≥ 0.
     /// Lens::commit() calls it, so that a bad contribution is an error at commit, never on the
     /// render path.
     void validate() const;
