@@ -1,9 +1,6 @@
 /// achromatic — Bier's achromatic lens: the colour under it is reduced to its luminance.
 ///
-/// | name   | type       | default | range  | unit | meaning                                        |
-/// |--------|------------|---------|--------|------|------------------------------------------------|
-/// | amount | Real       | 1       | [0, 1] |      | 0 = colour unchanged, 1 = grey (Rec. 709 luma) |
-/// | rays   | RayTypeSet | primary |        |      | (common) no effect: colour acts on the pixel   |
+/// Property table: docs/lenses.md (mvcl-render --list-lenses).
 ///
 /// Colour map: (1 − amount)·I + amount·L, where L replaces linear RGB by its Rec. 709 luminance
 /// 0.2126 r + 0.7152 g + 0.0722 b in all three channels. All such maps are polynomials in L, so

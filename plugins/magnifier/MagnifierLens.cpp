@@ -1,9 +1,6 @@
 /// magnifier — enlarges what lies under the lens about the lens's centre (ray shaping).
 ///
-/// | name          | type       | default | range   | unit | meaning                              |
-/// |---------------|------------|---------|---------|------|--------------------------------------|
-/// | magnification | Real       | 2       | [1, 64] |      | how much the lens enlarges the image |
-/// | rays          | RayTypeSet | primary |         |      | (common) ray types the lens acts on  |
+/// Property table: docs/lenses.md (mvcl-render --list-lenses).
 ///
 /// A pixel at normalised position p shoots its primary ray through c + (p − c)/m, c the region's
 /// centre. Algebra: two magnifiers multiply (not idempotent), and a magnifier moves what the

@@ -71,6 +71,26 @@ TEST(OpacityStage, APartlyOpaqueSurfaceBlendsItsShadingWithWhatLiesBehind) {
     }
 }
 
+TEST(OpacityStage, PeelingShowsTheKthSurfaceAlongThePrimaryRay) {
+    // cube-in-cube from its camera: a ray through the centre meets the outer cube's front wall,
+    // the inner cube's front and back, the outer cube's back wall. Peeling one surface equals
+    // hiding the outer cube where it is the first hit and the inner cube lies behind it.
+    const OpacityScene s;
+    RayPolicy peelOne;
+    peelOne.shading.peelSurfaces = 1;
+    RayPolicy withoutOuter;
+    withoutOuter.query(RayType::Primary).layerMask = ~layerBit(0);
+    const glm::vec3 centre = s.radiance(32, 24, peelOne);
+    EXPECT_LT(glm::length(centre - s.radiance(32, 24, withoutOuter)), 1e-4f);
+    EXPECT_NE(centre, s.radiance(32, 24, RayPolicy{}));
+    RayPolicy peelMany;
+    peelMany.shading.peelSurfaces = 40; // more surfaces than any ray meets: the background
+    EXPECT_EQ(s.radiance(32, 24, peelMany), s.scene.background);
+    RayPolicy none;
+    none.shading.peelSurfaces = 0;
+    EXPECT_EQ(s.radiance(32, 24, none), s.radiance(32, 24, RayPolicy{}));
+}
+
 TEST(OpacityStage, EdgeOpacityMakesGrazingSurfacesMoreOpaque) {
     const OpacityScene s;
     const RayPolicy plain = outerOpacity(0.f, 0.f), edged = outerOpacity(0.f, 1.f);

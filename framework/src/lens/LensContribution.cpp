@@ -33,11 +33,12 @@ void ShadingOverride::applyTo(ShadingPolicy &shading) const {
     if (maxDepth) shading.maxDepth = *maxDepth;
     if (layerOpacity) shading.layerOpacity = *layerOpacity;
     if (edgeOpacity) shading.edgeOpacity = *edgeOpacity;
+    if (peelSurfaces) shading.peelSurfaces = *peelSurfaces;
 }
 
 bool ShadingOverride::isEmpty() const {
     return !shadows && !shadowStrength && !shadowTint && !reflections && !refractions && !maxDepth &&
-           !layerOpacity && !edgeOpacity;
+           !layerOpacity && !edgeOpacity && !peelSurfaces;
 }
 
 LensContribution LensContribution::restrictedTo(uint8_t rayTypes) const {
@@ -48,6 +49,7 @@ LensContribution LensContribution::restrictedTo(uint8_t rayTypes) const {
         restricted.sampleFromScreen = glm::mat3(1.f);
         restricted.shading.layerOpacity.reset(); // the opacity stage acts on primary hits
         restricted.shading.edgeOpacity.reset();
+        restricted.shading.peelSurfaces.reset();
     }
     if (!includes(rayTypes, RayType::Shadow)) {
         restricted.shading.shadows.reset();
@@ -93,6 +95,8 @@ void LensContribution::validate() const {
             if (!(opacity >= 0.f && opacity <= 1.f)) fail("layer opacities must lie in [0, 1]");
     if (shading.edgeOpacity && !(*shading.edgeOpacity >= 0.f && *shading.edgeOpacity <= 1.f))
         fail("edge opacity must lie in [0, 1]");
+    if (shading.peelSurfaces && !(*shading.peelSurfaces >= 0 && *shading.peelSurfaces < 64))
+        fail("peelSurfaces must lie in [0, 63]");
     if (!isFinite(color.matrix) || !isFinite(color.offset)) fail("the colour map is not finite");
 }
 

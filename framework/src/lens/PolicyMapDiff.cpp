@@ -46,6 +46,7 @@ uint64_t renderHash(const PixelPolicy &p) {
     add(uint32_t(s.maxDepth));
     for (float opacity : s.layerOpacity) addFloat(opacity);
     addFloat(s.edgeOpacity);
+    add(uint32_t(s.peelSurfaces));
     addMat3(p.ray.color.matrix);
     addVec3(p.ray.color.offset);
     addMat3(p.sampleFromScreen);

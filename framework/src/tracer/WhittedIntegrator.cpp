@@ -178,12 +178,16 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
     const ShadingPolicy &shading = policy.shading;
     // Opacity stage: a partly opaque primary hit is blended with what the ray meets when it goes
     // on through the surface (the same constraints, t still counted from the camera).
+    // A primary ray's depth counts the surfaces it went through: depth peeling passes the first
+    // peelSurfaces ones at opacity 0.
     float alpha = 1.f;
     glm::vec3 behind(0.f);
-    if (type == RayType::Primary && (plan.translucentLayers & layerBit(hit.layer)) != 0 && depth < kDepthCeiling) {
+    const bool peeled = type == RayType::Primary && depth < std::min(shading.peelSurfaces, kDepthCeiling);
+    if (peeled ||
+        (type == RayType::Primary && (plan.translucentLayers & layerBit(hit.layer)) != 0 && depth < kDepthCeiling)) {
         const float facing = std::min(std::abs(glm::dot(si.shadingNormal, d)), 1.f);
         const float opacity = std::clamp(shading.layerOpacity[hit.layer], 0.f, 1.f);
-        alpha = opacity + (1.f - opacity) * std::clamp(shading.edgeOpacity, 0.f, 1.f) * (1.f - facing);
+        alpha = peeled ? 0.f : opacity + (1.f - opacity) * std::clamp(shading.edgeOpacity, 0.f, 1.f) * (1.f - facing);
         RayPolicy onwardPolicy = policy;
         RayQuery &onwardQuery = onwardPolicy.query(RayType::Primary);
         onwardQuery.tMin = std::max(0.f, onwardQuery.tMin - hit.t);

@@ -26,6 +26,7 @@ struct ShadingOverride {
     /// The opacity stage (primary rays): see ShadingPolicy::layerOpacity and edgeOpacity.
     std::optional<std::array<float, kMaxLayers>> layerOpacity;
     std::optional<float> edgeOpacity;
+    std::optional<int> peelSurfaces; ///< see ShadingPolicy::peelSurfaces (primary rays)
 
     void applyTo(ShadingPolicy &shading) const;
     bool isEmpty() const;

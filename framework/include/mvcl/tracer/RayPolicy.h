@@ -43,6 +43,9 @@ struct ShadingPolicy {
     /// Raises a translucent surface's opacity where it is seen edge-on, so silhouettes stay
     /// readable: alpha + (1 − alpha)·edgeOpacity·(1 − |N·V|), in [0, 1].
     float edgeOpacity = 0.f;
+    /// Primary rays pass through this many surfaces and show the next one (depth peeling: 0 =
+    /// the first surface, as usual). Needs no layers: it counts surfaces along the ray.
+    int peelSurfaces = 0;
 
     bool operator==(const ShadingPolicy &other) const = default;
 };
