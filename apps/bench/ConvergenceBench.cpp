@@ -204,7 +204,7 @@ std::string cameraText(const Camera &c) {
     char text[256];
     std::snprintf(text, sizeof text, "eye %.9g %.9g %.9g target %.9g %.9g %.9g up %.9g %.9g %.9g fov %.9g", c.eye().x,
                   c.eye().y, c.eye().z, c.target().x, c.target().y, c.target().z, c.up().x, c.up().y, c.up().z,
-                  double(c.verticalFov()));
+                  double(c.verticalFovDegrees()));
     return text;
 }
 

@@ -206,7 +206,7 @@ int main(int argc, char **argv) {
                 const glm::vec3 eye = target + glm::vec3(std::cos(angle) * offset.x + std::sin(angle) * offset.z, offset.y,
                                                          -std::sin(angle) * offset.x + std::cos(angle) * offset.z);
                 const Clock::time_point start = Clock::now();
-                session.setCamera(Camera::lookAt(eye, target, camera.up(), camera.verticalFov()));
+                session.setCamera(Camera::lookAt(eye, target, camera.up(), camera.verticalFovDegrees()));
                 const RenderPassStats pass = session.renderPass();
                 frames.push_back(millisecondsSince(start));
                 divider = std::max(divider, pass.resolutionDivider);

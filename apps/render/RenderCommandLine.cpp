@@ -91,6 +91,10 @@ std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::stri
                     "write the effective scene, camera, layer rules and lenses as a lens-stack file")
         ->type_name("FILE");
     app->add_flag("--list-lenses", cl.listLenses, "list the lens types found and their properties, then exit");
+    app->add_option("--format", cl.listFormat,
+                    "how --list-lenses prints: text (default) or markdown (the property tables of docs/lenses.md)")
+        ->check(CLI::IsMember({"text", "markdown"}))
+        ->type_name("FORMAT");
     app->add_flag("--info", cl.info, "load and validate only; print meshes, triangles, layers, bounds");
     app->add_flag_callback("--no-default-lights", [&] { cl.defaultLights = false; },
                            "a model file without lights stays unlit (ambient only) instead of\n"

@@ -42,6 +42,7 @@ struct RenderCommandLine {
     std::vector<std::string> lensSpecs; ///< "type:key=value,..." (--lens), stacked above the file's
     std::string saveLensesFile;      ///< write the effective stack here (--save-lenses)
     bool listLenses = false;
+    std::string listFormat = "text"; ///< --format of --list-lenses: text | markdown
     bool info = false;
     bool help = false;
     bool version = false;

@@ -94,6 +94,31 @@ std::size_t displayWidth(const std::string &text) {
 }
 
 /// Every lens type with its property table, generated from the declarations.
+/// Markdown cells: a '|' would end the cell.
+std::string markdownCell(const std::string &text) {
+    std::string cell;
+    for (const char c : text) {
+        if (c == '|') cell += '\\';
+        cell += c;
+    }
+    return cell;
+}
+
+/// The property tables of docs/lenses.md, one section per lens type (no module paths: they
+/// differ between machines, and the docs must not).
+void printLensTypesMarkdown(const LensRegistry &registry) {
+    for (const std::string &type : registry.lensTypes()) {
+        const std::shared_ptr<Lens> lens = registry.create(type);
+        std::printf("#### %s\n\n%s\n\n| name | type | default | range | meaning |\n|---|---|---|---|---|\n", type.c_str(),
+                    lens->info().description.c_str());
+        for (const PropertyDecl &decl : lens->properties())
+            std::printf("| `%s` | %s | `%s` | %s | %s |\n", decl.name.c_str(), propertyTypeName(decl.type),
+                        markdownCell(decl.defaultValue.toString()).c_str(), markdownCell(decl.rangeText()).c_str(),
+                        markdownCell(decl.doc).c_str());
+        std::printf("\n");
+    }
+}
+
 void printLensTypes(const LensRegistry &registry) {
     for (const std::string &type : registry.lensTypes()) {
         const std::shared_ptr<Lens> lens = registry.create(type);
@@ -212,7 +237,10 @@ int run(const RenderCommandLine &cl) {
     for (const Error &skipped : registry.loadModules(LensRegistry::defaultSearchPath()))
         std::fprintf(stderr, "mvcl-render: warning: plugin skipped: %s\n", skipped.what());
     if (cl.listLenses) {
-        printLensTypes(registry);
+        if (cl.listFormat == "markdown")
+            printLensTypesMarkdown(registry);
+        else
+            printLensTypes(registry);
         return kExitOk;
     }
     const ViewRequest request = viewRequest(cl);
@@ -244,6 +272,12 @@ int run(const RenderCommandLine &cl) {
     base.query(RayType::Primary).layerMask = setup.session.visibleLayers;
     session.setBasePolicy(base);
     session.setLensStack(lenses);
+    // Too many overlapping clip volumes would render a wrong cut; say so instead of rendering.
+    LensContext lensContext = LensContext::forScene(scene);
+    lensContext.camera = {"", camera.eye(), camera.target(), camera.up(), camera.verticalFovDegrees()};
+    lensContext.imageWidth = cl.width;
+    lensContext.imageHeight = cl.height;
+    LensStack::checkClipVolumes(lenses.compose(lensContext, base));
     ProgressBar bar(cl.progress && isatty(STDERR_FILENO));
     session.setProgressCallback([&](float f) { bar.update(f); });
     const RenderPassStats stats = session.renderUntilIdle();

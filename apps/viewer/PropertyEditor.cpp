@@ -1,8 +1,11 @@
 #include "PropertyEditor.h"
 
+#include <mvcl/core/Error.h>
+
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -105,6 +108,23 @@ bool editProperty(const PropertyDecl &decl, PropertyValue &value, const LayerTab
         uint32_t mask = value.toRayTypeSet();
         const std::vector<MaskBit> bits = {{0, "primary"}, {1, "shadow"}, {2, "reflection"}, {3, "refraction"}};
         if ((changed = editMask(label, mask, bits))) value = PropertyValue::rayTypeSet(uint8_t(mask));
+        break;
+    }
+    case PropertyType::Point3:
+    case PropertyType::Vector3:
+    case PropertyType::Box3:
+    case PropertyType::Transform: {
+        // Typed in the property's own text form, applied on Enter when it parses and validates.
+        std::array<char, 512> buffer{};
+        const std::string text = value.toString();
+        text.copy(buffer.data(), buffer.size() - 1);
+        if (ImGui::InputText(label, buffer.data(), buffer.size(), ImGuiInputTextFlags_EnterReturnsTrue)) {
+            try {
+                value = decl.parse(buffer.data());
+                changed = true;
+            } catch (const Error &) { // the old value stays; the tooltip gives the form
+            }
+        }
         break;
     }
     }

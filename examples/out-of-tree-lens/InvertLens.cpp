@@ -1,9 +1,6 @@
 /// invert — a colour lens written outside the mvcl tree: the image under it becomes its negative.
 ///
-/// | name   | type       | default | range  | unit | meaning                                      |
-/// |--------|------------|---------|--------|------|----------------------------------------------|
-/// | amount | Real       | 1       | [0, 1] |      | 0 = unchanged, 1 = negative (1 − c)          |
-/// | rays   | RayTypeSet | primary |        |      | (common) no effect: colour acts on the pixel |
+/// Its property table is printed by `mvcl-render --list-lenses` from the declarations below.
 ///
 /// Colour map c' = (1 − 2a)·c + a: a blend between c and 1 − c. Two inverts do not cancel unless
 /// both have amount 1, and an invert does not commute with other colour maps.
@@ -27,7 +24,8 @@ public:
     InvertLens() : Lens(kInvertLensInfo) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &,
+                                const LensContext &) const override {
         const float amount = float(properties.real("amount"));
         LensContribution contribution;
         contribution.color.matrix = (1.f - 2.f * amount) * glm::mat3(1.f);

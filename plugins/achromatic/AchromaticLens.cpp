@@ -1,9 +1,6 @@
 /// achromatic — Bier's achromatic lens: the colour under it is reduced to its luminance.
 ///
-/// | name   | type       | default | range  | unit | meaning                                        |
-/// |--------|------------|---------|--------|------|------------------------------------------------|
-/// | amount | Real       | 1       | [0, 1] |      | 0 = colour unchanged, 1 = grey (Rec. 709 luma) |
-/// | rays   | RayTypeSet | primary |        |      | (common) no effect: colour acts on the pixel   |
+/// Property table: docs/lenses.md (mvcl-render --list-lenses).
 ///
 /// Colour map: (1 − amount)·I + amount·L, where L replaces linear RGB by its Rec. 709 luminance
 /// 0.2126 r + 0.7152 g + 0.0722 b in all three channels. All such maps are polynomials in L, so
@@ -29,7 +26,7 @@ public:
     AchromaticLens() : Lens(kAchromaticLensInfo) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &, const LensContext &) const override {
         const float amount = float(properties.real("amount"));
         const glm::vec3 luma{0.2126f, 0.7152f, 0.0722f};
         // glm is column-major: column j holds input channel j's weight in every output channel.

@@ -1,11 +1,7 @@
 /// layer — the paper's semi-volumetric lens. Inside its region rays see only the selected layers
 /// ("from layer k inward" or any set), and primary rays only hits at least `distance` away.
 ///
-/// | name     | type       | default        | range       | unit        | meaning                                    |
-/// |----------|------------|----------------|-------------|-------------|--------------------------------------------|
-/// | layers   | LayerSet   | 1-             | layers 0–31 |             | layers rays under the lens may hit         |
-/// | distance | Real       | 0              | [0, ∞)      | scene units | primary hits nearer than this are skipped  |
-/// | rays     | RayTypeSet | primary,shadow |             |             | (common) ray types `layers` applies to     |
+/// Property table: docs/lenses.md (mvcl-render --list-lenses).
 ///
 /// With the default `rays` the hidden layers neither show nor cast shadows inside the lens; set
 /// rays=primary to keep their shadows. `distance` constrains primary rays only.
@@ -37,7 +33,7 @@ public:
     LayerLens() : Lens(kLayerLensInfo) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &, const LensContext &) const override {
         LensContribution contribution;
         // Every ray type gets the mask; Lens keeps only the types in "rays".
         for (RayQuery &query : contribution.visibility) query.layerMask = properties.layers("layers");

@@ -1,9 +1,6 @@
 /// magnifier — enlarges what lies under the lens about the lens's centre (ray shaping).
 ///
-/// | name          | type       | default | range   | unit | meaning                              |
-/// |---------------|------------|---------|---------|------|--------------------------------------|
-/// | magnification | Real       | 2       | [1, 64] |      | how much the lens enlarges the image |
-/// | rays          | RayTypeSet | primary |         |      | (common) ray types the lens acts on  |
+/// Property table: docs/lenses.md (mvcl-render --list-lenses).
 ///
 /// A pixel at normalised position p shoots its primary ray through c + (p − c)/m, c the region's
 /// centre. Algebra: two magnifiers multiply (not idempotent), and a magnifier moves what the
@@ -29,7 +26,7 @@ public:
     MagnifierLens() : Lens(kMagnifierLensInfo) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &region) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &region, const LensContext &) const override {
         const float scale = float(1.0 / properties.real("magnification"));
         const glm::vec2 center = region.center();
         LensContribution contribution;

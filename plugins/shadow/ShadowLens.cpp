@@ -1,13 +1,7 @@
 /// shadow — Bier's drop-shadow lens in 3D: shadows under it shown, removed or tinted, and which
 /// layers cast them.
 ///
-/// | name     | type       | default     | range            | unit | meaning                                         |
-/// |----------|------------|-------------|------------------|------|-------------------------------------------------|
-/// | mode     | Choice     | on          | on, off, tinted  |      | shadows as usual, none, or tinted with `tint`   |
-/// | casters  | LayerSet   | all         | layers 0–31      |      | layers that cast shadows under the lens         |
-/// | strength | Real       | 1           | [0, 1]           |      | how much an occluder blocks light (0 = none)    |
-/// | tint     | Color      | 0.3,0.3,0.5 | [0, ∞) per comp. |      | colour of occluded light in mode `tinted`       |
-/// | rays     | RayTypeSet | shadow      |                  |      | (common) ray types the lens acts on             |
+/// Property table: docs/lenses.md (mvcl-render --list-lenses).
 ///
 /// In mode `on` occluded light is black (tint 0,0,0) scaled by `strength`. Casters narrow what
 /// shadow rays hit (constraints intersect); to let layers hidden by a layer lens cast shadows,
@@ -40,7 +34,7 @@ public:
     ShadowLens() : Lens(kShadowLensInfo) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &, const LensContext &) const override {
         const std::string &mode = properties.choice("mode");
         LensContribution contribution;
         contribution.visibility[size_t(RayType::Shadow)].layerMask = properties.layers("casters");

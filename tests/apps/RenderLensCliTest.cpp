@@ -32,6 +32,32 @@ long lineCount(const std::string &text) { return long(std::count(text.begin(), t
 
 } // namespace
 
+TEST(RenderLensCli, DocsHoldTheGeneratedPropertyTablesOfEveryLens) {
+    // docs/lenses.md carries the output of --list-lenses --format markdown between two markers;
+    // a lens whose declarations change without the docs fails here. Regenerate the block with
+    //   build/bin/mvcl-render --list-lenses --format markdown
+    const CommandResult r = runRender("--list-lenses --format markdown");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char *type : {"clip", "layer", "peel", "xray"})
+        EXPECT_NE(r.output.find(std::string("#### ") + type + "\n"), std::string::npos) << type;
+    EXPECT_NE(r.output.find("| `rays` | ray-type set | `primary` | all\\|none\\|"), std::string::npos)
+        << "'|' inside a cell is escaped\n" << r.output;
+    const std::string docs = readText(fs::path(MVCL_TEST_DATA_DIR) / ".." / ".." / "docs" / "lenses.md");
+    const std::string begin = "<!-- generated: mvcl-render --list-lenses --format markdown -->\n";
+    const std::string end = "<!-- end of generated tables -->";
+    const std::size_t from = docs.find(begin), to = docs.find(end);
+    ASSERT_NE(from, std::string::npos) << "docs/lenses.md has no generated block";
+    ASSERT_NE(to, std::string::npos);
+    EXPECT_EQ(docs.substr(from + begin.size(), to - from - begin.size()), r.output)
+        << "docs/lenses.md's property tables differ from the lenses' declarations: regenerate them";
+}
+
+TEST(RenderLensCli, ListFormatMustBeTextOrMarkdown) {
+    const CommandResult r = runRender("--list-lenses --format html");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("--format"), std::string::npos) << r.output;
+}
+
 TEST(RenderLensCli, ListLensesShowsEveryLensWithItsPropertyTable) {
     const CommandResult r = runRender("--list-lenses");
     ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -111,7 +137,7 @@ TEST(RenderLensCli, BadLensSpecsExitTwoWithOneLineNamingTheProblem) {
         {"layer:strenght=1", "strenght"},
         {"nosuchlens:amount=1", "nosuchlens"},
         {"layer:center=[0.5,0.5", "'[' without ']'"},
-        {"layer:size=[0,0.3]", "size"},
+        {"layer:size=[-0.1,0.3]", "size"},
         {"achromatic:amount=2", "amount"},
     };
     for (const auto &c : cases) {

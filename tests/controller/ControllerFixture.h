@@ -88,9 +88,9 @@ inline LensRegistry *ControllerFixture::registry = nullptr;
 
 /// Where `point` (scene space) appears in a width × height image of `camera`, in pixels.
 inline glm::vec2 projectToPixel(const Camera &camera, const glm::vec3 &point, int width, int height) {
-    const glm::mat3 &axes = camera.worldFromCamera();
+    const glm::mat3 &axes = camera.sceneFromCamera();
     const glm::vec3 p = glm::transpose(axes) * (point - camera.eye());
-    const float tanHalf = std::tan(glm::radians(camera.verticalFov()) * 0.5f);
+    const float tanHalf = std::tan(glm::radians(camera.verticalFovDegrees()) * 0.5f);
     const float aspect = float(width) / float(height);
     const float sx = p.x / -p.z / (tanHalf * aspect);
     const float sy = p.y / -p.z / tanHalf;

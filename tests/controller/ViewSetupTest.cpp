@@ -75,14 +75,14 @@ TEST_F(ViewSetupTest, CameraComesFromTheRequestThenTheFileThenTheScene) {
     const ViewSetup withFile = ViewSetup::prepare(request, *registry);
     const Camera fromFile = withFile.camera(scene, request, 4.f / 3.f);
     EXPECT_EQ(fromFile.eye(), glm::vec3(1.f, 2.f, 9.f));
-    EXPECT_EQ(fromFile.verticalFov(), 30.f);
+    EXPECT_EQ(fromFile.verticalFovDegrees(), 30.f);
 
     request.eye = glm::vec3(0.f, 5.f, 5.f);
     request.verticalFovDegrees = 50.f;
     const Camera overridden = withFile.camera(scene, request, 4.f / 3.f);
     EXPECT_EQ(overridden.eye(), glm::vec3(0.f, 5.f, 5.f));
     EXPECT_EQ(overridden.target(), glm::vec3(0.f, 1.f, 0.f)) << "parts not given stay the file's";
-    EXPECT_EQ(overridden.verticalFov(), 50.f);
+    EXPECT_EQ(overridden.verticalFovDegrees(), 50.f);
 
     request.sceneCamera = "7";
     const std::string unknown = errorOf([&] { withFile.camera(scene, request, 1.f); });

@@ -53,7 +53,7 @@ public:
     EveryTypeLens() : Lens(kEveryTypeInfo) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &, const LensContext &) const override {
         properties.boolean("flag");
         properties.integer("count");
         properties.real("scale");
@@ -117,6 +117,18 @@ PropertyValue randomValue(const PropertyDecl &decl, std::mt19937 &rng) {
     case PropertyType::Choice: return PropertyValue::choice(decl.choices[rng() % decl.choices.size()]);
     case PropertyType::LayerSet: return PropertyValue::layerSet(uint32_t(rng()));
     case PropertyType::RayTypeSet: return PropertyValue::rayTypeSet(uint8_t(rng() % (kAllRayTypes + 1)));
+    case PropertyType::Point3: return PropertyValue::point3({real(), real(), real()});
+    case PropertyType::Vector3: return PropertyValue::vector3({real(), real(), real()});
+    case PropertyType::Box3: {
+        const glm::dvec3 a{real(), real(), real()}, b{real(), real(), real()};
+        return PropertyValue::box3({glm::min(a, b), glm::max(a, b)});
+    }
+    case PropertyType::Transform: {
+        glm::dmat4 m(1.0);
+        m[3] = glm::dvec4(real(), real(), real(), 1.0);
+        m[0][0] = 1.0 + std::abs(real()); // invertible: a scale and a shift
+        return PropertyValue::transform(m);
+    }
     }
     return {};
 }
@@ -349,6 +361,9 @@ TEST(LensStackFile, BadFilesFailNamingTheFileAndThePath) {
         {R"({"lenses": [{"type": "every-type", "properties": {"count": 1001}}]})", "lenses[0].properties.count",
          "1001"},
         {R"({"lenses": [{"type": "every-type", "properties": {"scale": -1}}]})", "lenses[0].properties.scale", "-1"},
+        // Range errors name the lens type as well as the path.
+        {R"({"lenses": [{"type": "every-type", "properties": {"scale": -1}}]})", "lenses[0].properties.scale",
+         "lens 'every-type': property 'scale'"},
         {R"({"lenses": [{"type": "every-type", "properties": {"flag": [1, 2]}}]})", "lenses[0].properties.flag",
          "true or false"},
         {R"({"lenses": [{"type": "every-type", "properties": {"tint": [1, 2]}}]})", "lenses[0].properties.tint",
@@ -359,7 +374,7 @@ TEST(LensStackFile, BadFilesFailNamingTheFileAndThePath) {
          "fancy"},
         {R"({"lenses": [{"type": "every-type", "properties": {"layers": "40"}}]})", "lenses[0].properties.layers",
          "40"},
-        {R"({"lenses": [{"type": "every-type", "region": {"size": [0, 0.3]}}]})", "lenses[0].region", "size"},
+        {R"({"lenses": [{"type": "every-type", "region": {"size": [-0.1, 0.3]}}]})", "lenses[0].region", "size"},
         {R"({"lenses": [{"type": "every-type", "region": {"points": [[0, 0], [1, 1]]}}]})", "lenses[0].region",
          "3 points"},
         {R"({"lenses": [{"type": "every-type", "region": {"shape": "star"}}]})", "lenses[0].region.shape", "star"},
@@ -476,11 +491,13 @@ TEST(LensSpec, ErrorsNameTheOptionTheSpecAndTheKey) {
         {"no-such-lens:count=3", "no-such-lens"},
         {":count=3", "type:key=value"},
         {"every-type:count", "'count' is not key=value"},
+        // A list value without brackets: the message shows the bracket form.
+        {"every-type:layers=1,3", "'3' is not key=value; a value with commas needs brackets: layers=[1,3]"},
         {"every-type:center=[0.3,0.5", "'[' without ']'"},
         {"every-type:center=0.3,0.5]", "']' without '['"},
         {"every-type:count=3,count=4", "count: given twice"},
         {"every-type:count=abc", "count: "},
-        {"every-type:size=[0,0.3]", "size"},
+        {"every-type:size=[-0.1,0.3]", "size"},
         {"every-type:center=[0.5]", "center"},
         {"every-type:shape=hexagon", "shape: unknown shape 'hexagon'"},
         {"every-type:points=[[0,0],[1,1]]", "3 points"},

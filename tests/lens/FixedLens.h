@@ -24,7 +24,7 @@ public:
     void setContribution(const LensContribution &contribution) { m_contribution = contribution; }
 
 protected:
-    LensContribution contribute(const PropertyValues &, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &, const LensRegion &, const LensContext &) const override {
         return m_contribution;
     }
 

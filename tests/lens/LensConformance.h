@@ -70,4 +70,10 @@ inline constexpr float kAlgebraTolerance = 1e-5f;
 /// unique lowerCamelCase names, defaults inside declared ranges, Int/Real bounded below.
 ::testing::AssertionResult checkDocumented(const LensFactory &create);
 
+/// (j) the context: a lens that does not declare LensInfo::dependsOnView contributes the same
+/// under another camera and image size; for every lens, snapshotIn() of the committed context
+/// is snapshot() itself, and snapshotIn() of another context is what a commit there gives (and
+/// the same pointer when asked twice).
+::testing::AssertionResult checkContext(const LensFactory &create, Random &random);
+
 } // namespace mvcl::test

@@ -3,6 +3,8 @@
 
 #include "LensConformanceSupport.h"
 
+#include <glm/common.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -63,6 +65,25 @@ PropertyValue randomValidValue(const PropertyDecl &decl, Random &random) {
         }
     case PropertyType::RayTypeSet:
         return PropertyValue::rayTypeSet(uint8_t(random() % 16));
+    case PropertyType::Point3:
+    case PropertyType::Vector3:
+    case PropertyType::Box3: {
+        // Within the scenes' few units, so that random points and boxes meet the geometry.
+        const double lo = std::max(decl.minimum, -3.0), hi = std::min(decl.maximum, 3.0);
+        const glm::dvec3 a{uniformReal(random, lo, hi), uniformReal(random, lo, hi), uniformReal(random, lo, hi)};
+        if (decl.type == PropertyType::Point3) return PropertyValue::point3(a);
+        if (decl.type == PropertyType::Vector3) return PropertyValue::vector3(a);
+        const glm::dvec3 b{uniformReal(random, lo, hi), uniformReal(random, lo, hi), uniformReal(random, lo, hi)};
+        return PropertyValue::box3({glm::min(a, b), glm::max(a, b)});
+    }
+    case PropertyType::Transform: {
+        glm::dmat4 m(1.0);
+        const double angle = uniformReal(random, -3.0, 3.0), scale = uniformReal(random, 0.5, 2.0);
+        m[0] = glm::dvec4(scale * std::cos(angle), scale * std::sin(angle), 0.0, 0.0);
+        m[1] = glm::dvec4(-scale * std::sin(angle), scale * std::cos(angle), 0.0, 0.0);
+        m[3] = glm::dvec4(uniformReal(random, -2.0, 2.0), uniformReal(random, -2.0, 2.0), uniformReal(random, -2.0, 2.0), 1.0);
+        return PropertyValue::transform(m);
+    }
     }
     return decl.defaultValue;
 }
@@ -107,7 +128,7 @@ std::string describePolicy(const PixelPolicy &p) {
     for (int t = 0; t < kRayTypeCount; ++t) {
         const RayQuery &q = p.ray.visibility[t];
         out << "vis" << t << "{layers=" << std::hex << q.layerMask << std::dec << " t=[" << q.tMin
-            << "," << q.tMax << "] clips=" << int(q.clipCount) << "} ";
+            << "," << q.tMax << "] clips=" << q.clipCount() << "} ";
     }
     const ShadingPolicy &s = p.ray.shading;
     out << "shading{shadows=" << s.shadows << " strength=" << s.shadowStrength << " tint="

@@ -101,6 +101,11 @@ TEST_P(LensConformance, CommitsWhileOtherThreadsComposeAndRender) {
     RecordProperty("threads", result.message());
 }
 
+TEST_P(LensConformance, ContextAndViewDependenceAreHonoured) {
+    Random random = this->random("context");
+    EXPECT_TRUE(checkContext(subject().create, random));
+}
+
 TEST_P(LensConformance, PropertyTableIsDocumented) {
     EXPECT_TRUE(checkDocumented(subject().create));
 }
@@ -136,7 +141,7 @@ public:
     AffineColorLens() : Lens(typeInfo()) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &, const LensContext &) const override {
         LensContribution contribution;
         contribution.color.matrix = glm::mat3(float(properties.real("gain")));
         contribution.color.offset = glm::vec3(float(properties.real("lift")));
@@ -157,14 +162,63 @@ public:
     SloppyLens() : Lens(typeInfo()) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &, const LensContext &) const override {
         LensContribution contribution;
         contribution.color.matrix = glm::mat3(float(properties.real("amount")));
         return contribution;
     }
 };
 
+/// Every spatial property type, and a colour offset that moves with the view-space anchor: it
+/// follows the camera, and `DeclaresView` says whether it admits it.
+template <bool DeclaresView> class AnchoredTintLens : public Lens {
+public:
+    static const LensInfo &typeInfo() {
+        static const LensInfo info{
+            "test-anchored-tint",
+            "Offsets the colour by where a view-space anchor lies in the scene.",
+            {PropertyDecl::point3("anchor", {0.0, 0.0, -1.0}, PropertySpace::View, "scene units",
+                                  "A point in front of the camera."),
+             PropertyDecl::vector3("axis", {0.0, 1.0, 0.0}, PropertySpace::World, "", "A direction."),
+             PropertyDecl::box3("zone", {{-1.0, -1.0, -1.0}, {1.0, 1.0, 1.0}}, PropertySpace::World, "scene units",
+                                "A box."),
+             PropertyDecl::transform("placement", glm::dmat4(1.0), PropertySpace::World, "A placement.")},
+            kAllRayTypes, LensAlgebra{}, DeclaresView};
+        return info;
+    }
+    AnchoredTintLens() : Lens(typeInfo()) {}
+
+protected:
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &,
+                                const LensContext &context) const override {
+        const glm::vec3 anchor = context.scenePoint(properties.point3("anchor"), PropertySpace::View);
+        const glm::vec3 axis = context.sceneVector(properties.vector3("axis"), PropertySpace::World);
+        const Bounds3f zone = context.sceneBox(properties.box3("zone"), PropertySpace::World);
+        const glm::mat4 placement = context.sceneTransform(properties.transform("placement"), PropertySpace::World);
+        LensContribution contribution;
+        contribution.color.offset =
+            0.01f * (anchor + axis + zone.center() + glm::vec3(placement * glm::vec4(0.f, 0.f, 0.f, 1.f)));
+        return contribution;
+    }
+};
+
 } // namespace
+
+TEST(LensConformanceChecks, SpatialPropertiesAndADeclaredViewPassTheChecks) {
+    const LensFactory create = committedFactory<AnchoredTintLens<true>>();
+    Random random = randomFor("test-anchored-tint", "honest");
+    EXPECT_TRUE(checkDefaults("test-anchored-tint", create));
+    EXPECT_TRUE(checkPropertyRoundTrip(create, random));
+    EXPECT_TRUE(checkRejectsBadValues(create));
+    EXPECT_TRUE(checkOutsideImageChangesNothing(create, random));
+    EXPECT_TRUE(checkContext(create, random));
+    EXPECT_TRUE(checkDocumented(create));
+}
+
+TEST(LensConformanceChecks, UndeclaredViewDependenceIsCaught) {
+    Random random = randomFor("test-anchored-tint", "undeclared");
+    EXPECT_FALSE(checkContext(committedFactory<AnchoredTintLens<false>>(), random));
+}
 
 TEST(LensConformanceChecks, HonestTestLensPassesEveryCheck) {
     const LensSubject tint{"test-tint", committedFactory<TintLens>()};
@@ -176,6 +230,7 @@ TEST(LensConformanceChecks, HonestTestLensPassesEveryCheck) {
     EXPECT_TRUE(checkOutsideImageChangesNothing(tint.create, random));
     EXPECT_TRUE(checkRayTypeMask(tint.create, random));
     EXPECT_TRUE(checkThreadSafety(tint.create, random, 50));
+    EXPECT_TRUE(checkContext(tint.create, random));
     EXPECT_TRUE(checkDocumented(tint.create));
 }
 

@@ -300,12 +300,11 @@ TEST(LensRegion, ValidateRejectsBadRegions) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     EXPECT_NO_THROW(LensRegion::ellipse({0.5f, 0.5f}, {0.1f, 0.1f}).validate());
     EXPECT_NO_THROW(LensRegion::rectangle({-2.f, 5.f}, {0.1f, 0.1f}).validate()); // off screen is fine
-    EXPECT_THROW(LensRegion::rectangle({0.5f, 0.5f}, {0.f, 0.1f}).validate(), Error);
+    EXPECT_THROW(LensRegion::rectangle({0.5f, 0.5f}, {-0.1f, 0.1f}).validate(), Error);
     EXPECT_THROW(LensRegion::ellipse({0.5f, 0.5f}, {0.1f, -0.1f}).validate(), Error);
     EXPECT_THROW(LensRegion::rectangle({nan, 0.5f}, {0.1f, 0.1f}).validate(), Error);
     EXPECT_THROW(LensRegion::rectangle({0.5f, 0.5f}, {INFINITY, 0.1f}).validate(), Error);
     EXPECT_THROW(LensRegion::polygon({{0.f, 0.f}, {1.f, 1.f}}).validate(), Error);
-    EXPECT_THROW(LensRegion::polygon({{0.f, 0.f}, {1.f, 0.f}, {0.5f, 0.f}}).validate(), Error);
     EXPECT_THROW(LensRegion::polygon({{0.f, 0.f}, {1.f, 0.f}, {nan, 1.f}}).validate(), Error);
     LensRegion feathered;
     feathered.setFeather(-1.f);
@@ -319,6 +318,22 @@ TEST(LensRegion, ValidateRejectsBadRegions) {
     } catch (const Error &e) {
         EXPECT_EQ(e.source(), "lens region");
     }
+}
+
+TEST(LensRegion, ZeroSizeRegionsAreValidAndEmpty) {
+    const std::vector<LensRegion> empties = {LensRegion::rectangle({0.5f, 0.5f}, {0.f, 0.1f}),
+                                             LensRegion::ellipse({0.5f, 0.5f}, {0.f, 0.f}),
+                                             LensRegion::polygon({{0.f, 0.5f}, {1.f, 0.5f}, {0.5f, 0.5f}})};
+    for (LensRegion region : empties) {
+        region.setFeather(3.f);
+        EXPECT_NO_THROW(region.validate());
+        EXPECT_TRUE(region.isEmpty());
+        EXPECT_TRUE(region.pixelBounds(40, 30).isEmpty());
+        EXPECT_EQ(region.coverage({20.f, 15.f}, 40, 30), 0.f);
+        const LensRegion::RowSpan span = region.rowSpan(15, 40, 30);
+        EXPECT_EQ(span.x0, span.x1);
+    }
+    EXPECT_FALSE(LensRegion::rectangle({0.5f, 0.5f}, {0.01f, 0.01f}).isEmpty());
 }
 
 TEST(LensRegion, DegenerateRegionsNeverProduceNaNCoverage) {

@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 
 const fs::path kTestPluginDir = MVCL_TEST_PLUGIN_DIR;
 const fs::path kPluginBuildDir = MVCL_PLUGIN_BUILD_DIR;
-const std::vector<std::string> kInTreeLenses = {"achromatic", "layer", "magnifier", "shadow"};
+const std::vector<std::string> kInTreeLenses = {"achromatic", "clip", "layer", "magnifier", "peel", "shadow", "xray"};
 
 fs::path fixture(const std::string &name) { return kTestPluginDir / ("mvcl-lens-fixture-" + name + ".so"); }
 
@@ -163,6 +163,8 @@ TEST(LensRegistryTest, EachBrokenModuleGetsAnErrorNamingItsFile) {
     };
     expectRefused(fixture("wrong-abi"), {"built for lens ABI " + std::to_string(MVCL_LENS_ABI_VERSION + 1) +
                                          ", this mvcl has " + std::to_string(MVCL_LENS_ABI_VERSION)});
+    // A plugin built for the previous ABI (before LensContext) gets the same clear error.
+    expectRefused(fixture("old-abi"), {"built for lens ABI 1, this mvcl has " + std::to_string(MVCL_LENS_ABI_VERSION)});
     expectRefused(fixture("wrong-size"), {"sizeof(mvcl::Lens) " + std::to_string(sizeof(Lens) + 8)});
     expectRefused(fixture("no-entry"), {"no entry point 'mvcl_lens_plugin'"});
     expectRefused(notElf, {"cannot be loaded"});
@@ -191,7 +193,7 @@ TEST(LensRegistryTest, LoadModulesSkipsBrokenModulesAndKeepsTheGoodOnes) {
         failedFiles.insert(fs::path(e.source().substr(7)).filename().string());
     }
     const std::set<std::string> expectedFailures = {
-        "mvcl-lens-fixture-wrong-abi.so", "mvcl-lens-fixture-wrong-size.so", "mvcl-lens-fixture-no-entry.so",
+        "mvcl-lens-fixture-old-abi.so", "mvcl-lens-fixture-wrong-abi.so", "mvcl-lens-fixture-wrong-size.so", "mvcl-lens-fixture-no-entry.so",
         "mvcl-lens-fixture-throwing-create.so", "mvcl-lens-fixture-misnamed.so", "mvcl-lens-fixture-twin.so",
         "mvcl-lens-not-elf.so"};
     EXPECT_EQ(failedFiles, expectedFailures);

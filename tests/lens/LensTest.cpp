@@ -40,7 +40,7 @@ public:
 
 protected:
     LensContribution contribute(const PropertyValues &properties,
-                                const LensRegion &) const override {
+                                const LensRegion &, const LensContext &) const override {
         if (properties.boolean("failWith")) throw std::runtime_error("probe failure");
         LensContribution contribution;
         contribution.visibility[size_t(RayType::Primary)].tMin = float(properties.real("distance"));
@@ -60,7 +60,7 @@ public:
 
 protected:
     LensContribution contribute(const PropertyValues &properties,
-                                const LensRegion &) const override {
+                                const LensRegion &, const LensContext &) const override {
         (void)properties.real("radius");
         return {};
     }
@@ -151,7 +151,7 @@ TEST(Lens, FailedCommitsKeepThePreviousSnapshot) {
     lens.commit();
     const auto good = lens.snapshot();
 
-    lens.setRegion(LensRegion::rectangle({0.5f, 0.5f}, {0.f, 0.2f}));
+    lens.setRegion(LensRegion::rectangle({0.5f, 0.5f}, {-0.1f, 0.2f}));
     const std::string regionError = errorOf([&] { lens.commit(); });
     EXPECT_NE(regionError.find("lens 'probe'"), std::string::npos) << regionError;
     EXPECT_NE(regionError.find("lens region"), std::string::npos) << regionError;
@@ -319,7 +319,7 @@ TEST(LensContribution, IdentityAndRestriction) {
     EXPECT_TRUE(changed([](LensContribution &c) { c.sampleFromScreen[0][0] = 2.f; }));
     EXPECT_TRUE(changed([](LensContribution &c) { c.visibility[3].layerMask = 1u; }));
     EXPECT_TRUE(changed([](LensContribution &c) { c.visibility[1].tMax = 5.f; }));
-    EXPECT_TRUE(changed([](LensContribution &c) { c.visibility[0].clipCount = 1; }));
+    EXPECT_TRUE(changed([](LensContribution &c) { c.visibility[0].addClip(ClipVolume::sphere(glm::vec3(0.f), 1.f, ClipVolume::Keep::Outside)); }));
     EXPECT_TRUE(changed([](LensContribution &c) { c.shading.refractions = true; }));
     EXPECT_TRUE(changed([](LensContribution &c) { c.color.offset.x = 0.1f; }));
 

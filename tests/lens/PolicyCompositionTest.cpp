@@ -16,13 +16,13 @@ ClipVolume randomClip(std::mt19937 &rng) {
     // Drawn from a small pool so that equal volumes occur and idempotence is exercised.
     std::uniform_int_distribution<int> pick(0, 5);
     const int k = pick(rng);
-    ClipVolume c;
-    c.shape = ClipVolume::Shape(k % 3);
-    c.keep = k < 3 ? ClipVolume::Keep::Outside : ClipVolume::Keep::Inside;
-    c.a = glm::vec3(float(k), 0.f, -float(k));
-    c.b = c.a + glm::vec3(1.f);
-    c.radius = 0.5f + float(k);
-    return c;
+    const ClipVolume::Keep keep = k < 3 ? ClipVolume::Keep::Outside : ClipVolume::Keep::Inside;
+    const glm::vec3 p(float(k), 0.f, -float(k));
+    switch (k % 3) {
+    case 0: return ClipVolume::box(p, p + glm::vec3(1.f), keep);
+    case 1: return ClipVolume::sphere(p, 0.5f + float(k), keep);
+    default: return ClipVolume::halfSpace(p + glm::vec3(0.f, 1.f, 0.f), 0.5f + float(k), keep);
+    }
 }
 
 RayQuery randomQuery(std::mt19937 &rng) {
@@ -34,8 +34,7 @@ RayQuery randomQuery(std::mt19937 &rng) {
     const int clips = int(rng() % 3);
     for (int i = 0; i < clips; ++i) q = intersectQueries(q, [&] {
         RayQuery c;
-        c.clips[0] = randomClip(rng);
-        c.clipCount = 1;
+        c.addClip(randomClip(rng));
         return c;
     }());
     return q;
@@ -46,16 +45,9 @@ void expectSameConstraint(const RayQuery &a, const RayQuery &b) {
     EXPECT_EQ(a.layerMask, b.layerMask);
     EXPECT_EQ(a.tMin, b.tMin);
     EXPECT_EQ(a.tMax, b.tMax);
-    ASSERT_EQ(a.clipCount, b.clipCount);
-    for (int i = 0; i < a.clipCount; ++i) {
-        const ClipVolume &c = a.clips[size_t(i)];
-        const auto end = b.clips.begin() + b.clipCount;
-        EXPECT_NE(std::find_if(b.clips.begin(), end, [&](const ClipVolume &d) {
-                      return d.shape == c.shape && d.keep == c.keep && d.a == c.a && d.b == c.b &&
-                             d.radius == c.radius;
-                  }),
-                  end);
-    }
+    ASSERT_EQ(a.clipCount(), b.clipCount());
+    for (const ClipVolume &c : a.clips())
+        EXPECT_NE(std::find(b.clips().begin(), b.clips().end(), c), b.clips().end());
 }
 
 ColorPolicy randomColor(std::mt19937 &rng) {
@@ -109,15 +101,40 @@ TEST(PolicyComposition, VisibilityNarrowsEveryField) {
     EXPECT_EQ(q.tMax, 5.f);
 }
 
-TEST(PolicyComposition, TooManyClipVolumesAreAnErrorNotATruncation) {
+TEST(PolicyComposition, TooManyClipVolumesAreCountedNeverThrown) {
     RayQuery a, b;
     for (int i = 0; i < kMaxClipVolumes; ++i) {
-        a.clips[size_t(i)].radius = float(i);
-        b.clips[size_t(i)].radius = float(100 + i);
+        a.addClip(ClipVolume::sphere(glm::vec3(0.f), float(i), ClipVolume::Keep::Outside));
+        b.addClip(ClipVolume::sphere(glm::vec3(0.f), float(100 + i), ClipVolume::Keep::Outside));
     }
-    a.clipCount = b.clipCount = kMaxClipVolumes;
-    EXPECT_NO_THROW(intersectQueries(a, a)); // identical volumes are kept once
-    EXPECT_THROW(intersectQueries(a, b), Error);
+    EXPECT_THROW(a.addClip(ClipVolume::sphere(glm::vec3(1.f), 1.f, ClipVolume::Keep::Outside)), Error);
+    int dropped = 0;
+    EXPECT_EQ(intersectQueries(a, a, &dropped), a); // identical volumes are kept once
+    EXPECT_EQ(dropped, 0);
+    const RayQuery q = intersectQueries(a, b, &dropped);
+    EXPECT_EQ(dropped, kMaxClipVolumes); // spheres do not merge: all of b's are left out
+    EXPECT_EQ(q.clipCount(), kMaxClipVolumes);
+}
+
+TEST(PolicyComposition, FullQueriesMergeBoxesKeptInsideAndParallelHalfSpaces) {
+    RayQuery a, b;
+    for (int i = 0; i < kMaxClipVolumes - 2; ++i)
+        a.addClip(ClipVolume::sphere(glm::vec3(0.f), float(i), ClipVolume::Keep::Outside));
+    a.addClip(ClipVolume::box(glm::vec3(0.f), glm::vec3(2.f), ClipVolume::Keep::Inside));
+    a.addClip(ClipVolume::halfSpace({0.f, 1.f, 0.f}, 1.f, ClipVolume::Keep::Outside));
+    b.addClip(ClipVolume::box(glm::vec3(1.f), glm::vec3(3.f), ClipVolume::Keep::Inside));
+    b.addClip(ClipVolume::halfSpace({0.f, 1.f, 0.f}, 0.5f, ClipVolume::Keep::Outside));
+    int dropped = 0;
+    const RayQuery q = intersectQueries(a, b, &dropped);
+    EXPECT_EQ(dropped, 0);
+    ASSERT_EQ(q.clipCount(), kMaxClipVolumes);
+    // The merged query accepts exactly the points both accept.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> coordinate(-1.f, 4.f);
+    for (int i = 0; i < 2000; ++i) {
+        const glm::vec3 p(coordinate(rng), coordinate(rng), coordinate(rng));
+        EXPECT_EQ(q.acceptsPoint(p), a.acceptsPoint(p) && b.acceptsPoint(p));
+    }
 }
 
 TEST(PolicyComposition, ColourIsFunctionCompositionBottomToTop) {

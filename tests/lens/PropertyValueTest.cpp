@@ -235,3 +235,66 @@ TEST(PropertyValues, ReadsOfUndeclaredNamesOrWrongTypesThrow) {
     EXPECT_THROW(properties.color("distance"), Error);
     EXPECT_THROW(properties.rayTypes("distance"), Error);
 }
+
+// --- the spatial types ---------------------------------------------------------------------------
+
+namespace {
+const PropertyDecl kAnchor = PropertyDecl::point3("anchor", {0.0, 0.0, -1.0}, PropertySpace::View, "scene units", "a point");
+const PropertyDecl kAxis = PropertyDecl::vector3("axis", {0.0, 1.0, 0.0}, PropertySpace::World, "", "a direction");
+const PropertyDecl kZone =
+    PropertyDecl::box3("zone", {{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}}, PropertySpace::World, "m", "a box");
+const PropertyDecl kPlacement = PropertyDecl::transform("placement", glm::dmat4(1.0), PropertySpace::World, "a map");
+} // namespace
+
+TEST(PropertyValue, SpatialTypesRoundTripBitExactlyThroughTheirText) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> any(-1e7, 1e7);
+    for (int i = 0; i < 200; ++i) {
+        const glm::dvec3 a{any(rng), any(rng), any(rng)}, b{any(rng), any(rng), any(rng)};
+        expectRoundTrip(kAnchor, PropertyValue::point3(a));
+        expectRoundTrip(kAxis, PropertyValue::vector3(b));
+        expectRoundTrip(kZone, PropertyValue::box3({glm::min(a, b), glm::max(a, b)}));
+        glm::dmat4 m(1.0);
+        m[0][0] = 1.0 + std::abs(a.x) * 1e-7;
+        m[1][2] = b.y * 1e-7;
+        m[3] = glm::dvec4(a, 1.0);
+        expectRoundTrip(kPlacement, PropertyValue::transform(m));
+    }
+}
+
+TEST(PropertyValue, SpatialTextsAndAccess) {
+    EXPECT_EQ(PropertyValue::point3({1.0, -2.5, 3.0}).toString(), "1,-2.5,3");
+    EXPECT_EQ(PropertyValue::box3({{0.0, 1.0, 2.0}, {3.0, 4.0, 5.0}}).toString(), "0,1,2,3,4,5");
+    EXPECT_EQ(PropertyValue::transform(glm::dmat4(1.0)).toString(), "1,0,0,0,0,1,0,0,0,0,1,0");
+    glm::dmat4 shift(1.0);
+    shift[3] = glm::dvec4(4.0, 5.0, 6.0, 1.0);
+    EXPECT_EQ(PropertyValue::transform(shift).toString(), "1,0,0,4,0,1,0,5,0,0,1,6") << "rows of [R | t]";
+    EXPECT_EQ(kPlacement.parse("identity"), PropertyValue::transform(glm::dmat4(1.0)));
+    EXPECT_EQ(kPlacement.parse("[1,0,0,4, 0,1,0,5, 0,0,1,6]").toTransform(), shift);
+    EXPECT_EQ(kAnchor.parse(" [1, 2, 3] ").toPoint3(), glm::dvec3(1.0, 2.0, 3.0));
+    EXPECT_EQ(kZone.parse("0,0,0,1,2,3").toBox3().max, glm::dvec3(1.0, 2.0, 3.0));
+    EXPECT_THROW(PropertyValue::point3({}).toVector3(), Error);
+    EXPECT_THROW(PropertyValue::vector3({}).toPoint3(), Error);
+    EXPECT_THROW(PropertyValue::box3({}).toTransform(), Error);
+    EXPECT_EQ(PropertyValue::box3({}).components().size(), 6u);
+    EXPECT_EQ(PropertyValue::transform(glm::dmat4(1.0)).components().size(), 12u);
+}
+
+TEST(PropertyDecl, SpatialValuesAreCheckedWithClearErrors) {
+    EXPECT_NE(errorOf([] { kZone.parse("1,0,0,0,1,1"); }).find("minimum exceeds its maximum on x"), std::string::npos);
+    EXPECT_NE(errorOf([] { kAnchor.parse("1,2"); }).find("is not a point (x,y,z)"), std::string::npos);
+    EXPECT_NE(errorOf([] { kAnchor.parse("1,nan,2"); }).find("property 'anchor'"), std::string::npos);
+    EXPECT_NE(errorOf([] { kPlacement.parse("0,0,0,0,0,0,0,0,0,0,0,0"); }).find("not invertible"), std::string::npos);
+    EXPECT_NE(errorOf([] { kPlacement.parse("1,0,0"); }).find("affine transform"), std::string::npos);
+    PropertyDecl bounded = kAxis;
+    bounded.minimum = -1.0;
+    bounded.maximum = 1.0;
+    EXPECT_NE(errorOf([&] { bounded.validate(PropertyValue::vector3({0.0, 2.0, 0.0})); }).find("outside [-1, 1]"),
+              std::string::npos);
+    EXPECT_NE(errorOf([] { kAxis.validate(PropertyValue::point3({})); }).find("expects a value of type vector3"),
+              std::string::npos);
+    EXPECT_EQ(kAnchor.rangeText(), "(-∞, ∞) scene units per component, view space");
+    EXPECT_EQ(kZone.rangeText(), "(-∞, ∞) m per component, world space");
+    EXPECT_EQ(kPlacement.rangeText(), "affine (identity or 12 numbers), world space");
+    EXPECT_EQ(kAnchor.space, PropertySpace::View);
+}

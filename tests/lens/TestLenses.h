@@ -25,7 +25,7 @@ public:
     TintLens() : Lens(typeInfo()) {}
 
 protected:
-    LensContribution contribute(const PropertyValues &properties, const LensRegion &) const override {
+    LensContribution contribute(const PropertyValues &properties, const LensRegion &, const LensContext &) const override {
         LensContribution contribution;
         const glm::vec3 tint = properties.color("tint");
         contribution.color.matrix = glm::mat3(tint.x, 0.f, 0.f, 0.f, tint.y, 0.f, 0.f, 0.f, tint.z);

@@ -207,16 +207,15 @@ TEST(RobustnessLayers, ClipPlaneThroughFaceOrEdgeIsConsistent) {
         ClipVolume volume;
     };
     const std::vector<Clip> clips = {
-        {"keep x>=0.5 (in the +x face)", {ClipVolume::Shape::HalfSpace, ClipVolume::Keep::Inside, {1, 0, 0}, {}, 0.5f}},
-        {"cut x>=0.5 (in the +x face)", {ClipVolume::Shape::HalfSpace, ClipVolume::Keep::Outside, {1, 0, 0}, {}, 0.5f}},
-        {"keep through the +x+y edge", {ClipVolume::Shape::HalfSpace, ClipVolume::Keep::Inside, edgeNormal, {}, glm::dot(edgeNormal, glm::vec3(0.5f, 0.5f, 0.f))}},
-        {"cut through the +x+y edge", {ClipVolume::Shape::HalfSpace, ClipVolume::Keep::Outside, edgeNormal, {}, glm::dot(edgeNormal, glm::vec3(0.5f, 0.5f, 0.f))}},
+        {"keep x>=0.5 (in the +x face)", ClipVolume::halfSpace(glm::vec3(1, 0, 0), 0.5f, ClipVolume::Keep::Inside)},
+        {"cut x>=0.5 (in the +x face)", ClipVolume::halfSpace(glm::vec3(1, 0, 0), 0.5f, ClipVolume::Keep::Outside)},
+        {"keep through the +x+y edge", ClipVolume::halfSpace(edgeNormal, glm::dot(edgeNormal, glm::vec3(0.5f, 0.5f, 0.f)), ClipVolume::Keep::Inside)},
+        {"cut through the +x+y edge", ClipVolume::halfSpace(edgeNormal, glm::dot(edgeNormal, glm::vec3(0.5f, 0.5f, 0.f)), ClipVolume::Keep::Outside)},
     };
     uint64_t rays = 0, inconsistent = 0;
     for (const Clip &clip : clips) {
         RayQuery q;
-        q.clips[0] = clip.volume;
-        q.clipCount = 1;
+        q.addClip(clip.volume);
         uint64_t onPlaneKept = 0, onPlane = 0;
         for (int i = 0; i < 20000; ++i) {
             CaseRng rng(22, uint64_t(i));

@@ -154,9 +154,7 @@ CaseCounts runWatertightCase(const WatertightConfig &config, int threads) {
     const double jitter = config.mesh == SphereMesh::Uv200 ? 0.5 : 0.2;
     RayQuery query;
     if (config.clipLowerHalf) {
-        query.clips[0] = {ClipVolume::Shape::HalfSpace, ClipVolume::Keep::Inside, {0.f, 0.f, 1.f},
-                          {}, float(config.center.z)};
-        query.clipCount = 1;
+        query.addClip(ClipVolume::halfSpace({0.f, 0.f, 1.f}, float(config.center.z), ClipVolume::Keep::Inside));
     }
     // Targets this far above the clip plane are unambiguous even where float spacing is 1/64.
     const double clipMargin = 0.1;

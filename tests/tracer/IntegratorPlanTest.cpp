@@ -137,8 +137,7 @@ TEST(IntegratorPlan, ClipVolumesNeverMakeShadowRaysUnneeded) {
     const Scene s = layeredSpheres({matte()});
     RayPolicy policy;
     RayQuery &shadow = policy.query(RayType::Shadow);
-    shadow.clips[0] = {ClipVolume::Shape::Box, ClipVolume::Keep::Inside, {100.f, 100.f, 100.f}, {101.f, 101.f, 101.f}};
-    shadow.clipCount = 1;
+    shadow.addClip(ClipVolume::box({100.f, 100.f, 100.f}, {101.f, 101.f, 101.f}, ClipVolume::Keep::Inside));
     EXPECT_EQ(planOf(s, policy, StageSelection::SkipUnneeded).shadows, ShadowStage::AnyHit);
 }
 

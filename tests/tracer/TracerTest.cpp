@@ -124,13 +124,14 @@ RayQuery randomQuery(std::mt19937 &rng) {
     }
     const int clips = coin(rng) == 0 ? 1 + coin(rng) % 3 : 0;
     for (int i = 0; i < clips; ++i) {
-        ClipVolume &cv = q.clips[q.clipCount++];
-        cv.shape = ClipVolume::Shape(coin(rng) % 3);
-        cv.keep = coin(rng) % 2 ? ClipVolume::Keep::Inside : ClipVolume::Keep::Outside;
-        cv.a = {pos(rng), pos(rng), pos(rng)};
-        cv.b = cv.a + glm::vec3{uni(rng), uni(rng), uni(rng)};
-        cv.radius = uni(rng);
-        if (cv.shape == ClipVolume::Shape::HalfSpace) cv.a = randomUnit(rng);
+        const int shape = coin(rng) % 3;
+        const ClipVolume::Keep keep = coin(rng) % 2 ? ClipVolume::Keep::Inside : ClipVolume::Keep::Outside;
+        const glm::vec3 a{pos(rng), pos(rng), pos(rng)};
+        const glm::vec3 b = a + glm::vec3{uni(rng), uni(rng), uni(rng)};
+        const float radius = uni(rng);
+        if (shape == 0) q.addClip(ClipVolume::box(a, b, keep));
+        if (shape == 1) q.addClip(ClipVolume::sphere(a, radius, keep));
+        if (shape == 2) q.addClip(ClipVolume::halfSpace(randomUnit(rng), radius, keep));
     }
     return q;
 }
@@ -339,23 +340,21 @@ TEST(Tracer, ClipVolumes) {
     Hit h;
 
     RayQuery cut; // box cutaway around the front face: the ray reaches the sphere
-    cut.clips[0] = {ClipVolume::Shape::Box, ClipVolume::Keep::Outside, {-2, -2, 0.9f}, {2, 2, 2}, 0};
-    cut.clipCount = 1;
+    cut.addClip(ClipVolume::box({-2, -2, 0.9f}, {2, 2, 2}, ClipVolume::Keep::Outside));
     ASSERT_TRUE(tracer.closestHit(ray, cut, h));
     EXPECT_EQ(h.kind, GeometryKind::Sphere);
     EXPECT_NEAR(h.t, 10.f - std::sqrt(0.25f - 0.01f), 1e-5f);
 
     RayQuery keepIn; // keep only inside a sphere of radius 0.3: the sphere's front is outside
-    keepIn.clips[0] = {ClipVolume::Shape::Sphere, ClipVolume::Keep::Inside, {0, 0, 0}, {}, 0.3f};
-    keepIn.clipCount = 1;
+    keepIn.addClip(ClipVolume::sphere({0, 0, 0}, 0.3f, ClipVolume::Keep::Inside));
     EXPECT_FALSE(tracer.closestHit(ray, keepIn, h));
-    keepIn.clips[0].radius = 1.5f; // now everything but the far half of the box
+    keepIn.clearClips();
+    keepIn.addClip(ClipVolume::sphere({0, 0, 0}, 1.5f, ClipVolume::Keep::Inside)); // everything but the far half of the box
     ASSERT_TRUE(tracer.closestHit(ray, keepIn, h));
     EXPECT_FLOAT_EQ(h.t, 9.f);
 
     RayQuery half; // keep z ≤ 0 only: {p : dot((0,0,-1), p) ≥ 0}, as a keep-inside half-space
-    half.clips[0] = {ClipVolume::Shape::HalfSpace, ClipVolume::Keep::Inside, {0, 0, -1}, {}, 0.f};
-    half.clipCount = 1;
+    half.addClip(ClipVolume::halfSpace({0, 0, -1}, 0.f, ClipVolume::Keep::Inside));
     ASSERT_TRUE(tracer.closestHit(ray, half, h));
     EXPECT_EQ(h.kind, GeometryKind::Sphere); // far root of the sphere
     EXPECT_NEAR(h.t, 10.f + std::sqrt(0.25f - 0.01f), 1e-5f);
@@ -365,8 +364,7 @@ TEST(Tracer, ClipVolumes) {
     EXPECT_EQ(std::bit_cast<uint32_t>(h.t), std::bit_cast<uint32_t>(b.t));
 
     RayQuery all = half; // intersection of constraints: also cut z < −0.6 → nothing but the sphere
-    all.clips[1] = {ClipVolume::Shape::HalfSpace, ClipVolume::Keep::Outside, {0, 0, -1}, {}, 0.6f};
-    all.clipCount = 2;
+    all.addClip(ClipVolume::halfSpace({0, 0, -1}, 0.6f, ClipVolume::Keep::Outside));
     ASSERT_TRUE(tracer.closestHit(ray, all, h));
     EXPECT_EQ(h.kind, GeometryKind::Sphere);
 }

@@ -15,6 +15,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -240,7 +242,7 @@ TEST_F(RenderSessionTest, HundredsOfEditsPerSecondAgainstABackgroundSessionCorru
         stack.lens(e % 2)->commit();
         session.setLensStack(stack);
         if (e % 50 == 0) session.setCamera(Camera::lookAt(camera.eye() * (1.f + 0.01f * float(e % 3)), camera.target(),
-                                                          camera.up(), camera.verticalFov()));
+                                                          camera.up(), camera.verticalFovDegrees()));
         copies += session.copyImage(shown, changed);
         std::this_thread::sleep_for(std::chrono::microseconds(500));
     }
@@ -269,7 +271,7 @@ TEST_F(RenderSessionTest, CameraEditsPreviewAtReducedResolutionThenRenderFull) {
     session.setSettings(settings);
     session.setCamera(camera);
     EXPECT_EQ(session.renderPass().kind, PassKind::Full) << "the first image is never a preview";
-    const Camera moved = Camera::lookAt(camera.eye() * 1.1f, camera.target(), camera.up(), camera.verticalFov());
+    const Camera moved = Camera::lookAt(camera.eye() * 1.1f, camera.target(), camera.up(), camera.verticalFovDegrees());
     session.setCamera(moved);
     const RenderPassStats preview = session.renderPass();
     EXPECT_EQ(preview.kind, PassKind::Preview);
@@ -438,6 +440,82 @@ TEST_F(RenderSessionTest, CopyImageReportsTheChangedRectangle) {
     EXPECT_FALSE(changed.isEmpty());
     EXPECT_LE(changed.x1, 48) << "only tiles near the lens changed";
     EXPECT_EQ(shown.pixels(), session.image().pixels());
+}
+
+/// Grey by how far the eye is from the scene's centre: a lens that follows the view, and
+/// declares it.
+class EyeDistanceLens : public Lens {
+public:
+    static const LensInfo &typeInfo() {
+        static const LensInfo info{"test-eye-distance", "Offsets the colour by the eye's distance.",
+                                   {}, kAllRayTypes, LensAlgebra{}, true};
+        return info;
+    }
+    EyeDistanceLens() : Lens(typeInfo()) {}
+
+protected:
+    LensContribution contribute(const PropertyValues &, const LensRegion &, const LensContext &context) const override {
+        LensContribution contribution;
+        const glm::vec3 center = context.sceneBounds.isEmpty() ? glm::vec3(0.f) : context.sceneBounds.center();
+        contribution.color.offset = glm::vec3(0.01f * glm::length(context.camera.eye - center));
+        return contribution;
+    }
+};
+
+TEST_F(RenderSessionTest, ViewDependentLensesFollowTheCameraWithoutACommit) {
+    const Scene scene = loadScene("builtin:cube-in-cube");
+    const Tracer tracer(scene);
+    const Camera camera = Camera::fromDesc(scene.cameras.front());
+    auto lens = std::make_shared<EyeDistanceLens>();
+    lens->setRegion(LensRegion::rectangle({0.5f, 0.5f}, {1.f, 1.f}));
+    lens->commit(); // in the default context: no scene, default camera
+    LensStack stack;
+    stack.add(lens);
+    const RenderSettings settings = smallSettings(32, 24, 1);
+    RenderSession session(tracer);
+    session.setSettings(settings);
+    session.setCamera(camera);
+    session.setLensStack(stack);
+    session.renderUntilIdle();
+    const auto offsetUnderLens = [&] { return session.policyMap().dominantPolicy(16, 12).ray.color.offset.x; };
+    const float distance = glm::length(camera.eye() - scene.bounds().center());
+    EXPECT_FLOAT_EQ(offsetUnderLens(), 0.01f * distance) << "the session's context, not the commit's";
+
+    const Camera moved = Camera::lookAt(camera.eye() * 2.f, camera.target(), camera.up(), camera.verticalFovDegrees());
+    session.setCamera(moved);
+    session.renderUntilIdle();
+    EXPECT_FLOAT_EQ(offsetUnderLens(), 0.01f * glm::length(moved.eye() - scene.bounds().center()));
+    EXPECT_EQ(lens->snapshot()->version, 1u) << "the session never commits a lens";
+    EXPECT_FALSE(session.hasWork()) << "the same view gives the same snapshot: no endless recomposing";
+}
+
+TEST_F(RenderSessionTest, ClipLensCutsInWorldCoordinatesOfTheSessionScene) {
+    // The clip lens committed without a context still cuts where its world box says in the
+    // session's scene: the session re-contributes it with the scene's bounds.
+    const Scene scene = loadScene("builtin:cube-in-cube");
+    const Tracer tracer(scene);
+    const Camera camera = Camera::fromDesc(scene.cameras.front());
+    LensRegistry clipRegistry;
+    clipRegistry.loadModule(std::filesystem::path(MVCL_PLUGIN_BUILD_DIR) / "mvcl-lens-clip.so");
+    std::shared_ptr<Lens> clip = clipRegistry.create("clip");
+    clip->setRegion(LensRegion::rectangle({0.5f, 0.5f}, {1.f, 1.f}));
+    clip->setPropertyText("mode", "keep"); // keep only the default box: the +x+y+z octant
+    clip->commit();
+    LensStack stack;
+    stack.add(clip);
+    RenderSession session(tracer);
+    session.setSettings(smallSettings(32, 24, 1));
+    session.setCamera(camera);
+    session.setLensStack(stack);
+    session.renderUntilIdle();
+    const RayQuery &primary = session.policyMap().dominantPolicy(16, 12).ray.query(RayType::Primary);
+    ASSERT_EQ(primary.clipCount(), 1);
+    const Bounds3f bounds = scene.bounds();
+    const auto near = [](const glm::vec3 &a, const glm::vec3 &b) { return glm::length(a - b) < 1e-4f; };
+    EXPECT_TRUE(near(primary.clip(0).boxMin(), bounds.center()));
+    EXPECT_TRUE(near(primary.clip(0).boxMax(), bounds.min + 1.5f * bounds.extent()));
+    EXPECT_EQ(session.policyMap().dominantPolicy(16, 12).ray.query(RayType::Shadow).clipCount(), 0)
+        << "primary rays only by default";
 }
 
 TEST_F(RenderSessionTest, RejectsBadSettingsWithAClearError) {

@@ -146,13 +146,11 @@ std::vector<NamedPolicy> policyVariants() {
     add("short shadow range", [](RayPolicy &p) { p.query(RayType::Shadow).tMax = 0.5f; });
     add("shadow cutaway", [](RayPolicy &p) {
         RayQuery &q = p.query(RayType::Shadow);
-        q.clips[0] = {ClipVolume::Shape::HalfSpace, ClipVolume::Keep::Outside, {0.f, 1.f, 0.f}, {}, 0.5f};
-        q.clipCount = 1;
+        q.addClip(ClipVolume::halfSpace({0.f, 1.f, 0.f}, 0.5f, ClipVolume::Keep::Outside));
     });
     add("primary cutaway", [](RayPolicy &p) {
         RayQuery &q = p.query(RayType::Primary);
-        q.clips[0] = {ClipVolume::Shape::HalfSpace, ClipVolume::Keep::Outside, {0.f, 0.f, 1.f}, {}, 0.f};
-        q.clipCount = 1;
+        q.addClip(ClipVolume::halfSpace({0.f, 0.f, 1.f}, 0.f, ClipVolume::Keep::Outside));
     });
     add("achromatic colour map", [](RayPolicy &p) {
         const glm::vec3 luma(0.2126f, 0.7152f, 0.0722f);

@@ -301,6 +301,26 @@ void Controller::setViewPreset(ViewPreset preset) {
     setCamera(presetCamera(d->camera, preset, d->scene->bounds(), coordinates().aspect()));
 }
 
+void Controller::Private::placeLenses() {
+    if (!scene) return;
+    if (sceneOfContext != scene.get()) {
+        sceneContext = LensContext::forScene(*scene);
+        sceneOfContext = scene.get();
+    }
+    LensContext context = sceneContext;
+    context.camera = {"", camera.eye(), camera.target(), camera.up(), camera.verticalFovDegrees()};
+    context.imageWidth = viewSize.x;
+    context.imageHeight = viewSize.y;
+    for (const std::shared_ptr<Lens> &lens : stack.lenses()) {
+        lens->setContext(context);
+        if (!lens->hasUncommittedChanges()) continue;
+        try {
+            lens->commit();
+        } catch (const Error &) { // the render session shows it as it is in this context
+        }
+    }
+}
+
 glm::vec3 Controller::pointUnder(const glm::vec2 &pixel) const {
     const ViewCoordinates view = coordinates();
     // What the pixel shows: the lenses over it shape its ray and limit what it may hit.
@@ -321,7 +341,7 @@ glm::vec3 Controller::pointUnder(const glm::vec2 &pixel) const {
     Hit hit;
     if (d->tracer->closestHit(ray, policy.ray.query(RayType::Primary), hit)) return ray.at(hit.t);
     // Nothing there: the point at the target's depth, where orbiting and panning work too.
-    const glm::vec3 forward = -d->camera.worldFromCamera()[2];
+    const glm::vec3 forward = -d->camera.sceneFromCamera()[2];
     const float depth = glm::dot(d->camera.target() - d->camera.eye(), forward);
     const float cosine = glm::dot(ray.direction, forward);
     return cosine > 0.f ? ray.at(depth / cosine) : d->camera.target();

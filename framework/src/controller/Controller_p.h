@@ -69,6 +69,9 @@ struct Controller::Private {
 
     Drag drag;
 
+    LensContext sceneContext;            ///< the scene part of placeLenses()'s context
+    const Scene *sceneOfContext = nullptr; ///< the scene it was computed for
+
     std::filesystem::path sessionPath;
     std::filesystem::path explicitRecoveryPath;
     std::function<void(const Error &)> errorCallback;
@@ -81,8 +84,18 @@ struct Controller::Private {
     Step captureStep() const { return {captureState(), selected}; }
     /// Makes `step` the current state and tells the RenderSession what changed.
     void restore(const Step &step);
-    void sendCamera() { session->setCamera(camera); }
-    void sendLenses() { session->setLensStack(stack); }
+    /// Gives every lens of the stack the scene and view it is shown in, and recommits those
+    /// whose contribution that changes (LensContext), so that their snapshots (picking, files)
+    /// agree with the image. A lens that cannot commit in the new context keeps its snapshot.
+    void placeLenses();
+    void sendCamera() {
+        placeLenses();
+        session->setCamera(camera);
+    }
+    void sendLenses() {
+        placeLenses();
+        session->setLensStack(stack);
+    }
     void sendBasePolicy() { session->setBasePolicy(basePolicy()); }
     RenderSettings sessionSettings() const;
     /// Ends an edit that started at `before`: one undo step if anything changed, then the

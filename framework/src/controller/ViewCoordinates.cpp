@@ -35,7 +35,7 @@ Camera ViewCoordinates::cameraFromWorld(const LensStackCamera &world) const {
 
 LensStackCamera ViewCoordinates::worldFromCamera(const Camera &camera) const {
     return LensStackCamera{"", worldFromScene(camera.eye()), worldFromScene(camera.target()), camera.up(),
-                           camera.verticalFov()};
+                           camera.verticalFovDegrees()};
 }
 
 Ray ViewCoordinates::rayThroughPixel(const Camera &camera, const glm::vec2 &pixel) const {

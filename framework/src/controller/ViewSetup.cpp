@@ -64,7 +64,7 @@ Camera ViewSetup::camera(const Scene &scene, const ViewRequest &request, float a
     const glm::vec3 eye = request.eye ? coordinates.sceneFromWorld(*request.eye) : camera.eye();
     const glm::vec3 target = request.target ? coordinates.sceneFromWorld(*request.target) : camera.target();
     return Camera::lookAt(eye, target, request.up.value_or(camera.up()),
-                          request.verticalFovDegrees.value_or(camera.verticalFov()));
+                          request.verticalFovDegrees.value_or(camera.verticalFovDegrees()));
 }
 
 LensStackDescription ViewSetup::describe(const Scene &scene, const Camera &camera, const LensStack &lenses,

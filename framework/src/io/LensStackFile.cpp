@@ -218,7 +218,7 @@ std::shared_ptr<Lens> readLens(const Json &value, const LensRegistry &registry, 
             try {
                 lens->setPropertyText(key, text);
             } catch (const Error &e) {
-                keyWhere.fail(e.problem());
+                keyWhere.fail(e.what()); // names the lens type ("lens 'layer': property ...")
             }
         }
     }
@@ -565,12 +565,20 @@ std::shared_ptr<Lens> parseLensSpec(std::string_view spec, const LensRegistry &r
     Json region = Json::object();
     Json properties = Json::object();
     const std::string_view settings = colon == std::string_view::npos ? std::string_view{} : spec.substr(colon + 1);
+    std::string previousItem; // for the hint when a list value was not bracketed
     for (std::string_view item : splitOutsideBrackets(settings, where)) {
         item = trimmed(item);
         if (item.empty()) continue;
         const std::size_t equals = item.find('=');
-        if (equals == std::string_view::npos)
-            where.fail(singleQuoted(item) + " is not key=value");
+        if (equals == std::string_view::npos) {
+            std::string message = singleQuoted(item) + " is not key=value";
+            const std::size_t previousEquals = previousItem.find('=');
+            if (previousEquals != std::string::npos)
+                message += "; a value with commas needs brackets: " + previousItem.substr(0, previousEquals + 1) +
+                           "[" + previousItem.substr(previousEquals + 1) + "," + std::string(item) + "]";
+            where.fail(message);
+        }
+        previousItem = std::string(item);
         const std::string key(trimmed(item.substr(0, equals)));
         const std::string_view text = trimmed(item.substr(equals + 1));
         const bool isRegionKey = std::ranges::find(kRegionKeys, key) != std::end(kRegionKeys);

@@ -64,16 +64,49 @@ public:
     std::vector<PropertyValue> defaults;
     std::string label;
 
+    /// Whether a contribution made in `a` may differ from one made in `b` for this lens.
+    bool contextsDiffer(const LensContext &a, const LensContext &b) const {
+        return !a.sameScene(b) || (info.dependsOnView && !a.sameView(b));
+    }
+
+    /// The contribution of `values` and `region` in `context`, checked and restricted to the
+    /// lens's "rays"; throws mvcl::Error naming the lens. `unread` gets the unread names.
+    LensContribution contribution(const Lens &lens, const std::vector<PropertyValue> &values, const LensRegion &region,
+                                  const LensContext &context, std::vector<std::string> *unread) const {
+        LensContribution result;
+        try {
+            region.validate();
+            const PropertyValues read(properties, values);
+            result = lens.contribute(read, region, context);
+            result.validate();
+            if (unread) *unread = read.unreadNames();
+        } catch (const Error &e) {
+            rethrowNamingLens(e);
+        } catch (const std::exception &e) {
+            throw Error(source, std::string("contribute() failed: ") + e.what());
+        } catch (...) {
+            throw Error(source, "contribute() failed with an unknown exception");
+        }
+        return result.restrictedTo(values.back().toRayTypeSet());
+    }
+
     // Staged state; edited by one thread at a time.
     bool stagedEnabled = true;
     LensRegion stagedRegion;
     std::vector<PropertyValue> stagedValues;
+    LensContext stagedContext;
 
     // Committed state; read by render threads, so guarded.
     mutable std::mutex committedMutex;
     std::shared_ptr<const LensSnapshot> snapshot;
     std::vector<PropertyValue> committedValues;
+    LensContext committedContext;
     std::vector<std::string> unreadProperties;
+    // The last snapshotIn() that had to re-contribute: for committed version `inContextVersion`
+    // in `inContext`.
+    std::shared_ptr<const LensSnapshot> inContextSnapshot;
+    uint64_t inContextVersion = 0;
+    LensContext inContext;
 };
 
 Lens::Lens(const LensInfo &info) : d(std::make_unique<LensPrivate>(info)) {}
@@ -92,6 +125,9 @@ void Lens::setEnabled(bool enabled) { d->stagedEnabled = enabled; }
 
 const LensRegion &Lens::region() const { return d->stagedRegion; }
 void Lens::setRegion(const LensRegion &region) { d->stagedRegion = region; }
+
+const LensContext &Lens::context() const { return d->stagedContext; }
+void Lens::setContext(const LensContext &context) { d->stagedContext = context; }
 
 PropertyValue Lens::property(std::string_view name) const {
     return d->stagedValues[d->indexOf(name)];
@@ -121,38 +157,49 @@ void Lens::resetProperties() { d->stagedValues = d->defaults; }
 bool Lens::hasUncommittedChanges() const {
     const std::lock_guard lock(d->committedMutex);
     return d->snapshot->version == 0 || d->stagedEnabled != d->snapshot->enabled ||
-           !(d->stagedRegion == d->snapshot->region) || d->stagedValues != d->committedValues;
+           !(d->stagedRegion == d->snapshot->region) || d->stagedValues != d->committedValues ||
+           d->contextsDiffer(d->stagedContext, d->committedContext);
 }
 
 void Lens::commit() {
-    LensContribution contribution;
     std::vector<std::string> unread;
-    try {
-        d->stagedRegion.validate();
-        const PropertyValues values(d->properties, d->stagedValues);
-        contribution = contribute(values, d->stagedRegion);
-        unread = values.unreadNames();
-    } catch (const Error &e) {
-        d->rethrowNamingLens(e);
-    } catch (const std::exception &e) {
-        throw Error(d->source, std::string("contribute() failed: ") + e.what());
-    } catch (...) {
-        throw Error(d->source, "contribute() failed with an unknown exception");
-    }
+    const LensContribution contribution =
+        d->contribution(*this, d->stagedValues, d->stagedRegion, d->stagedContext, &unread);
     // "rays" is applied here, not by the plugin, so it never counts as unread.
     std::erase(unread, std::string(kRaysProperty));
-    const uint8_t rays = d->stagedValues.back().toRayTypeSet();
 
     auto next = std::make_shared<LensSnapshot>();
     next->enabled = d->stagedEnabled;
     next->region = d->stagedRegion;
-    next->contribution = contribution.restrictedTo(rays);
+    next->contribution = contribution;
+    next->idempotent = d->info.algebra.idempotent;
 
     const std::lock_guard lock(d->committedMutex);
     next->version = d->snapshot->version + 1;
     d->snapshot = std::move(next);
     d->committedValues = d->stagedValues;
+    d->committedContext = d->stagedContext;
     d->unreadProperties = std::move(unread);
+}
+
+std::shared_ptr<const LensSnapshot> Lens::snapshotIn(const LensContext &context) const {
+    const std::lock_guard lock(d->committedMutex);
+    if (d->snapshot->version == 0 || !d->contextsDiffer(context, d->committedContext)) return d->snapshot;
+    if (d->inContextSnapshot && d->inContextVersion == d->snapshot->version &&
+        !d->contextsDiffer(context, d->inContext))
+        return d->inContextSnapshot;
+    auto next = std::make_shared<LensSnapshot>(*d->snapshot);
+    try {
+        next->contribution = d->contribution(*this, d->committedValues, next->region, context, nullptr);
+    } catch (const Error &) {
+        // It committed in its own context; in this one it cannot say what it wants: no effect.
+        next->enabled = false;
+        next->contribution = LensContribution{};
+    }
+    d->inContextSnapshot = std::move(next);
+    d->inContextVersion = d->snapshot->version;
+    d->inContext = context;
+    return d->inContextSnapshot;
 }
 
 std::shared_ptr<const LensSnapshot> Lens::snapshot() const {

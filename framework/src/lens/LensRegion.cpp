@@ -187,7 +187,13 @@ std::optional<detail::EllipseCoverageShape> featheredEllipse(LensRegion::Shape s
 } // namespace
 #endif
 
+bool LensRegion::isEmpty() const {
+    const glm::vec2 extent = size();
+    return !(extent.x > 0.f && extent.y > 0.f);
+}
+
 float LensRegion::coverage(const glm::vec2 &pixel, int width, int height) const {
+    if (isEmpty()) return 0.f;
 #if defined(__SSE2__)
     if (const auto ellipse = featheredEllipse(m_shape, m_center, m_size, m_feather, width, height)) {
         const __m128 x[1] = {_mm_set1_ps(pixel.x)}, y = _mm_set1_ps(pixel.y);
@@ -310,6 +316,7 @@ LensRegion::RowSpan LensRegion::rowSpan(int y, int width, int height) const {
 }
 
 PixelRect LensRegion::pixelBounds(int width, int height) const {
+    if (isEmpty()) return {};
     Bounds bounds;
     if (m_shape == Shape::Polygon) {
         if (m_points.empty()) return {};
@@ -348,14 +355,11 @@ void LensRegion::validate() const {
                                     std::to_string(m_points.size()));
         for (const glm::vec2 &p : m_points)
             if (!isFinite(p)) throw Error(source, "a polygon point is not finite");
-        const glm::vec2 extent = size();
-        if (!(extent.x > 0.f && extent.y > 0.f))
-            throw Error(source, "the polygon's bounding box has zero width or height");
-        return;
+        return; // a polygon without area is an empty region (isEmpty), not an error
     }
     if (!isFinite(m_center)) throw Error(source, "centre is not finite");
-    if (!isFinite(m_size) || !(m_size.x > 0.f && m_size.y > 0.f))
-        throw Error(source, "size must be finite and > 0, got " + std::to_string(m_size.x) + " x " +
+    if (!isFinite(m_size) || !(m_size.x >= 0.f && m_size.y >= 0.f))
+        throw Error(source, "size must be finite and ≥ 0, got " + std::to_string(m_size.x) + " x " +
                                 std::to_string(m_size.y));
 }
 

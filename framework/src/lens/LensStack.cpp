@@ -54,6 +54,21 @@ PolicyMap LensStack::compose(const RayPolicy &base, int width, int height, int t
     return PolicyMapComposer(snapshots, base, width, height).compose(threads);
 }
 
+PolicyMap LensStack::compose(const LensContext &context, const RayPolicy &base, int threads) const {
+    LensSnapshots snapshots;
+    snapshots.reserve(m_lenses.size());
+    for (const auto &lens : m_lenses) snapshots.push_back(lens->snapshotIn(context));
+    return PolicyMapComposer(snapshots, base, context.imageWidth, context.imageHeight).compose(threads);
+}
+
+void LensStack::checkClipVolumes(const PolicyMap &map) {
+    if (map.droppedClipVolumes() > 0)
+        throw Error("lens stack", "overlapping lenses ask for more than " + std::to_string(kMaxClipVolumes) +
+                                      " clip volumes on one ray type; " + std::to_string(map.droppedClipVolumes()) +
+                                      " could not be merged and would be left out (use fewer clip lenses "
+                                      "over the same pixels)");
+}
+
 std::vector<LensCost> LensStack::costs(const PolicyMap &map, std::span<const PolicyCost> perPolicy) const {
     std::vector<LensCost> result;
     for (int i = 0; i < size(); ++i) {

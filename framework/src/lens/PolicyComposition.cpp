@@ -1,26 +1,53 @@
 #include <mvcl/lens/PolicyComposition.h>
 
-#include <mvcl/core/Error.h>
+#include <glm/common.hpp>
 
 #include <algorithm>
 
 namespace mvcl {
 
-RayQuery intersectQueries(const RayQuery &a, const RayQuery &b) {
+namespace {
+// Folds `clip` into a volume of `query` whose intersection with it has the same shape: two
+// kept-inside boxes (their overlap is a box), or two half-spaces of the same normal and keep.
+// True if it did, so the query needs no new slot.
+bool mergeInto(RayQuery &query, const ClipVolume &clip) {
+    using Shape = ClipVolume::Shape;
+    using Keep = ClipVolume::Keep;
+    RayQuery merged;
+    bool done = false;
+    for (const ClipVolume &c : query.clips()) {
+        ClipVolume next = c;
+        if (!done && c.keep() == clip.keep() && c.shape() == clip.shape()) {
+            if (c.shape() == Shape::Box && c.keep() == Keep::Inside) {
+                next = ClipVolume::box(glm::max(c.boxMin(), clip.boxMin()), glm::min(c.boxMax(), clip.boxMax()),
+                                       Keep::Inside);
+                done = true;
+            } else if (c.shape() == Shape::HalfSpace && c.normal() == clip.normal()) {
+                // Kept inside: both hold, the larger offset. Cut away: either cuts, the smaller.
+                const float offset = c.keep() == Keep::Inside ? std::max(c.offset(), clip.offset())
+                                                              : std::min(c.offset(), clip.offset());
+                next = ClipVolume::halfSpace(c.normal(), offset, c.keep());
+                done = true;
+            }
+        }
+        merged.tryAddClip(next);
+    }
+    if (done) {
+        query.clearClips();
+        for (const ClipVolume &c : merged.clips()) query.tryAddClip(c);
+    }
+    return done;
+}
+} // namespace
+
+RayQuery intersectQueries(const RayQuery &a, const RayQuery &b, int *droppedClips) {
     RayQuery q = a;
     q.layerMask = a.layerMask & b.layerMask;
     q.tMin = std::max(a.tMin, b.tMin);
     q.tMax = std::min(a.tMax, b.tMax);
-    for (int i = 0; i < b.clipCount; ++i) {
-        const ClipVolume &clip = b.clips[size_t(i)];
-        // An identical volume constrains nothing new: keeping it once makes the rule idempotent.
-        const auto begin = q.clips.begin();
-        if (std::any_of(begin, begin + q.clipCount, [&](const ClipVolume &c) { return c == clip; }))
-            continue;
-        if (q.clipCount >= kMaxClipVolumes)
-            throw Error("lens stack", "overlapping lenses use more than " + std::to_string(kMaxClipVolumes) +
-                                          " clip volumes on one ray type");
-        q.clips[q.clipCount++] = clip;
+    for (const ClipVolume &clip : b.clips()) {
+        if (q.tryAddClip(clip) || mergeInto(q, clip)) continue;
+        if (droppedClips) ++*droppedClips;
     }
     return q;
 }
@@ -33,10 +60,11 @@ ColorPolicy composeColor(const ColorPolicy &lower, const ColorPolicy &upper) {
     return c;
 }
 
-PixelPolicy applyContribution(const PixelPolicy &below, const LensContribution &lens) {
+PixelPolicy applyContribution(const PixelPolicy &below, const LensContribution &lens, int *droppedClips) {
     PixelPolicy p = below;
     for (int t = 0; t < kRayTypeCount; ++t)
-        p.ray.visibility[size_t(t)] = intersectQueries(below.ray.visibility[size_t(t)], lens.visibility[size_t(t)]);
+        p.ray.visibility[size_t(t)] =
+            intersectQueries(below.ray.visibility[size_t(t)], lens.visibility[size_t(t)], droppedClips);
     lens.shading.applyTo(p.ray.shading);
     if (!lens.color.isIdentity()) p.ray.color = composeColor(below.ray.color, lens.color);
     // The upper lens looks at the image the lower ones make: its map is applied to the pixel

@@ -101,16 +101,24 @@ PolicyMapComposer::PolicyMapComposer(const LensSnapshots &snapshots, const RayPo
         if (!s.enabled || s.contribution.isIdentity()) continue;
         const PixelRect r = s.region.pixelBounds(width, height);
         if (r.isEmpty()) continue;
+        // An idempotent lens right above an equal one (same contribution, same region) adds
+        // nothing: leaving it out keeps a feathered edge at coverage c instead of 1 − (1 − c)².
+        if (!m_active.empty()) {
+            const LensSnapshot &below = *snapshots[size_t(m_active.back().index)];
+            if (s.idempotent && below.idempotent && s.region == below.region && s.contribution == below.contribution)
+                continue;
+        }
         m_active.push_back({i, r, &s.region});
         m_firstRow = std::min(m_firstRow, r.y0);
         m_endRow = std::max(m_endRow, r.y1);
     }
 }
 
-PixelPolicy PolicyMapComposer::policyOfSet(const LensSnapshots &snapshots, const RayPolicy &base, uint64_t lensSet) {
+PixelPolicy PolicyMapComposer::policyOfSet(const LensSnapshots &snapshots, const RayPolicy &base, uint64_t lensSet,
+                                           int *droppedClips) {
     PixelPolicy policy{base, glm::mat3(1.f), 0};
     for (uint64_t bits = lensSet; bits != 0; bits &= bits - 1)
-        policy = applyContribution(policy, snapshots[size_t(std::countr_zero(bits))]->contribution);
+        policy = applyContribution(policy, snapshots[size_t(std::countr_zero(bits))]->contribution, droppedClips);
     policy.lensSet = lensSet;
     return policy;
 }
@@ -292,6 +300,7 @@ void PolicyMapComposer::mergeBands(std::vector<Band> &bands, PolicyMap &map) con
     // Serial setPixelBlend calls would have appended each blend's mix after the policies of
     // the sets seen before it: walk each band's sets and blends in the order they were met.
     std::unordered_map<uint64_t, uint16_t> policyOf{{0, 0}};
+    int droppedClips = 0;
     for (Band &band : bands) {
         band.policyOfSet.resize(band.sets().size());
         std::size_t next = 0; // the band's next blend to append
@@ -309,11 +318,12 @@ void PolicyMapComposer::mergeBands(std::vector<Band> &bands, PolicyMap &map) con
             appendBlendsBefore(band.blendsBeforeSet[i]);
             const uint64_t set = band.sets()[i];
             const auto [it, added] = policyOf.try_emplace(set, 0);
-            if (added) it->second = map.addPolicy(policyOfSet(m_snapshots, m_base, set));
+            if (added) it->second = map.addPolicy(policyOfSet(m_snapshots, m_base, set, &droppedClips));
             band.policyOfSet[i] = it->second;
         }
         appendBlendsBefore(band.blends.size());
     }
+    map.setDroppedClipVolumes(droppedClips);
 }
 
 void PolicyMapComposer::fillBand(const Band &band, PolicyMap &map) {

@@ -38,8 +38,9 @@ public:
     PolicyMap compose(int threads) const;
 
     /// The policy of pixels fully covered by exactly the lenses in `lensSet`, applied bottom →
-    /// top onto `base`.
-    static PixelPolicy policyOfSet(const LensSnapshots &snapshots, const RayPolicy &base, uint64_t lensSet);
+    /// top onto `base`. Clip volumes that did not fit are counted in `*droppedClips`.
+    static PixelPolicy policyOfSet(const LensSnapshots &snapshots, const RayPolicy &base, uint64_t lensSet,
+                                   int *droppedClips = nullptr);
 
 private:
     struct ActiveLens {

@@ -31,13 +31,12 @@ uint64_t renderHash(const PixelPolicy &p) {
         addFloat(q.tMin);
         addFloat(q.tMax);
         add(q.layerMask);
-        add(q.clipCount);
-        for (int i = 0; i < q.clipCount; ++i) {
-            const ClipVolume &clip = q.clips[size_t(i)];
-            add(uint64_t(clip.shape) << 8 | uint64_t(clip.keep));
-            addVec3(clip.a);
-            addVec3(clip.b);
-            addFloat(clip.radius);
+        add(uint64_t(q.clipCount()));
+        for (const ClipVolume &clip : q.clips()) {
+            add(uint64_t(clip.shape()) << 8 | uint64_t(clip.keep()));
+            addVec3(clip.boxMin()); // also the centre or normal
+            addVec3(clip.boxMax());
+            addFloat(clip.radius()); // also the offset
         }
     }
     const ShadingPolicy &s = p.ray.shading;
@@ -45,6 +44,9 @@ uint64_t renderHash(const PixelPolicy &p) {
     addFloat(s.shadowStrength);
     addVec3(s.shadowTint);
     add(uint32_t(s.maxDepth));
+    for (float opacity : s.layerOpacity) addFloat(opacity);
+    addFloat(s.edgeOpacity);
+    add(uint32_t(s.peelSurfaces));
     addMat3(p.ray.color.matrix);
     addVec3(p.ray.color.offset);
     addMat3(p.sampleFromScreen);

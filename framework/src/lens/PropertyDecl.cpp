@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
 namespace mvcl {
 
 namespace {
@@ -67,7 +70,66 @@ bool parseColor(std::string_view text, glm::vec3 &value) {
     return true;
 }
 
+// `count` comma-separated numbers, optionally in brackets.
+bool parseNumbers(std::string_view text, size_t count, std::vector<double> &numbers) {
+    if (text.size() >= 2 && text.front() == '[' && text.back() == ']')
+        text = detail::trimmed(text.substr(1, text.size() - 2));
+    numbers.clear();
+    for (;;) {
+        const size_t comma = text.find(',');
+        double number = 0.0;
+        if (numbers.size() == count || !detail::parseWhole(detail::trimmed(text.substr(0, comma)), number) ||
+            !std::isfinite(number))
+            return false;
+        numbers.push_back(number);
+        if (comma == std::string_view::npos) break;
+        text.remove_prefix(comma + 1);
+    }
+    return numbers.size() == count;
+}
+
+PropertyDecl spatial(std::string name, PropertyType type, PropertyValue defaultValue, PropertySpace space,
+                     std::string unit, std::string doc) {
+    PropertyDecl decl = declaration(std::move(name), type, std::move(defaultValue), std::move(doc));
+    decl.space = space;
+    decl.unit = std::move(unit);
+    return decl;
+}
+
+const char *numbersExpected(PropertyType type) {
+    switch (type) {
+    case PropertyType::Point3: return "a point (x,y,z)";
+    case PropertyType::Vector3: return "a vector (x,y,z)";
+    case PropertyType::Box3: return "a box (minX,minY,minZ,maxX,maxY,maxZ)";
+    default: return "an affine transform (identity, or 12 numbers: the rows of [R | t])";
+    }
+}
+
 } // namespace
+
+PropertyDecl PropertyDecl::point3(std::string name, const glm::dvec3 &defaultValue, PropertySpace space,
+                                  std::string unit, std::string doc) {
+    return spatial(std::move(name), PropertyType::Point3, PropertyValue::point3(defaultValue), space,
+                   std::move(unit), std::move(doc));
+}
+
+PropertyDecl PropertyDecl::vector3(std::string name, const glm::dvec3 &defaultValue, PropertySpace space,
+                                   std::string unit, std::string doc) {
+    return spatial(std::move(name), PropertyType::Vector3, PropertyValue::vector3(defaultValue), space,
+                   std::move(unit), std::move(doc));
+}
+
+PropertyDecl PropertyDecl::box3(std::string name, const Box3d &defaultValue, PropertySpace space, std::string unit,
+                                std::string doc) {
+    return spatial(std::move(name), PropertyType::Box3, PropertyValue::box3(defaultValue), space, std::move(unit),
+                   std::move(doc));
+}
+
+PropertyDecl PropertyDecl::transform(std::string name, const glm::dmat4 &defaultValue, PropertySpace space,
+                                     std::string doc) {
+    return spatial(std::move(name), PropertyType::Transform, PropertyValue::transform(defaultValue), space, "",
+                   std::move(doc));
+}
 
 PropertyDecl PropertyDecl::boolean(std::string name, bool defaultValue, std::string doc) {
     return declaration(std::move(name), PropertyType::Bool, PropertyValue::boolean(defaultValue),
@@ -156,6 +218,29 @@ PropertyValue PropertyDecl::parse(std::string_view rawText) const {
         break;
     }
     case PropertyType::Choice: value = PropertyValue::choice(std::string(text)); break;
+    case PropertyType::Point3:
+    case PropertyType::Vector3:
+    case PropertyType::Box3:
+    case PropertyType::Transform: {
+        if (type == PropertyType::Transform && detail::lowered(text) == "identity") {
+            value = PropertyValue::transform(glm::dmat4(1.0));
+            break;
+        }
+        const size_t count = type == PropertyType::Box3 ? 6 : type == PropertyType::Transform ? 12 : 3;
+        std::vector<double> n;
+        if (!parseNumbers(text, count, n))
+            throw Error(source, detail::quoted(text) + " is not " + numbersExpected(type));
+        if (type == PropertyType::Point3) value = PropertyValue::point3({n[0], n[1], n[2]});
+        if (type == PropertyType::Vector3) value = PropertyValue::vector3({n[0], n[1], n[2]});
+        if (type == PropertyType::Box3) value = PropertyValue::box3({{n[0], n[1], n[2]}, {n[3], n[4], n[5]}});
+        if (type == PropertyType::Transform) {
+            glm::dmat4 m(1.0);
+            for (int row = 0; row < 3; ++row)
+                for (int column = 0; column < 4; ++column) m[column][row] = n[size_t(row * 4 + column)];
+            value = PropertyValue::transform(m);
+        }
+        break;
+    }
     case PropertyType::LayerSet:
     case PropertyType::RayTypeSet:
         // The set parsers throw Error("", problem); name this property as the source instead.
@@ -199,6 +284,26 @@ void PropertyDecl::validate(const PropertyValue &value) const {
             throw Error(source, detail::quoted(value.toChoice()) + " is not one of " +
                                     joined(choices, "|"));
         break;
+    case PropertyType::Point3:
+    case PropertyType::Vector3:
+    case PropertyType::Box3:
+        for (double number : value.components()) checkRange(number, "component ");
+        if (type == PropertyType::Box3) {
+            const Box3d box = value.toBox3();
+            for (int axis = 0; axis < 3; ++axis)
+                if (box.min[axis] > box.max[axis])
+                    throw Error(source, std::string("box minimum exceeds its maximum on ") + "xyz"[axis]);
+        }
+        break;
+    case PropertyType::Transform: {
+        for (double number : value.components())
+            if (!std::isfinite(number))
+                throw Error(source, "component " + detail::shortestText(number) + " is not a finite number");
+        const glm::dmat4 m = value.toTransform();
+        if (!(std::abs(glm::determinant(glm::dmat3(m))) > 1e-12))
+            throw Error(source, "the transform's linear part is not invertible");
+        break;
+    }
     case PropertyType::LayerSet: break; // every 32-bit mask is a valid set of layers
     case PropertyType::RayTypeSet:
         if (value.toRayTypeSet() & ~kAllRayTypes)
@@ -212,9 +317,14 @@ void PropertyDecl::validate(const PropertyValue &value) const {
 std::string PropertyDecl::rangeText() const {
     switch (type) {
     case PropertyType::Bool: return "true|false";
+    case PropertyType::Transform:
+        return std::string("affine (identity or 12 numbers), ") + propertySpaceName(space) + " space";
     case PropertyType::Int:
     case PropertyType::Real:
-    case PropertyType::Color: {
+    case PropertyType::Color:
+    case PropertyType::Point3:
+    case PropertyType::Vector3:
+    case PropertyType::Box3: {
         // An infinite bound is open: "[0, ∞)".
         std::string text(std::isinf(minimum) ? "(" : "[");
         text += detail::boundText(minimum);
@@ -224,6 +334,11 @@ std::string PropertyDecl::rangeText() const {
         if (!unit.empty()) {
             text += ' ';
             text += unit;
+        }
+        if (type == PropertyType::Point3 || type == PropertyType::Vector3 || type == PropertyType::Box3) {
+            text += " per component, ";
+            text += propertySpaceName(space);
+            text += " space";
         }
         return text;
     }

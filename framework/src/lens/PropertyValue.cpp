@@ -56,6 +56,10 @@ const char *propertyTypeName(PropertyType type) {
     case PropertyType::Choice: return "choice";
     case PropertyType::LayerSet: return "layer set";
     case PropertyType::RayTypeSet: return "ray-type set";
+    case PropertyType::Point3: return "point3";
+    case PropertyType::Vector3: return "vector3";
+    case PropertyType::Box3: return "box3";
+    case PropertyType::Transform: return "transform";
     }
     return "unknown";
 }
@@ -80,7 +84,36 @@ PropertyValue PropertyValue::real(double value) {
 
 PropertyValue PropertyValue::color(const glm::vec3 &value) {
     PropertyValue v(PropertyType::Color);
-    v.m_color = value;
+    for (int i = 0; i < 3; ++i) v.m_numbers[size_t(i)] = value[i];
+    return v;
+}
+
+PropertyValue PropertyValue::point3(const glm::dvec3 &value) {
+    PropertyValue v(PropertyType::Point3);
+    for (int i = 0; i < 3; ++i) v.m_numbers[size_t(i)] = value[i];
+    return v;
+}
+
+PropertyValue PropertyValue::vector3(const glm::dvec3 &value) {
+    PropertyValue v(PropertyType::Vector3);
+    for (int i = 0; i < 3; ++i) v.m_numbers[size_t(i)] = value[i];
+    return v;
+}
+
+PropertyValue PropertyValue::box3(const Box3d &value) {
+    PropertyValue v(PropertyType::Box3);
+    for (int i = 0; i < 3; ++i) {
+        v.m_numbers[size_t(i)] = value.min[i];
+        v.m_numbers[size_t(i + 3)] = value.max[i];
+    }
+    return v;
+}
+
+PropertyValue PropertyValue::transform(const glm::dmat4 &value) {
+    PropertyValue v(PropertyType::Transform);
+    // Text order is row by row of [R | t]; glm is column-major (value[column][row]).
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 4; ++column) v.m_numbers[size_t(row * 4 + column)] = value[column][row];
     return v;
 }
 
@@ -128,7 +161,43 @@ double PropertyValue::toReal() const {
 
 glm::vec3 PropertyValue::toColor() const {
     requireType(m_type, PropertyType::Color);
-    return m_color;
+    return glm::vec3(glm::dvec3(m_numbers[0], m_numbers[1], m_numbers[2]));
+}
+
+glm::dvec3 PropertyValue::toPoint3() const {
+    requireType(m_type, PropertyType::Point3);
+    return {m_numbers[0], m_numbers[1], m_numbers[2]};
+}
+
+glm::dvec3 PropertyValue::toVector3() const {
+    requireType(m_type, PropertyType::Vector3);
+    return {m_numbers[0], m_numbers[1], m_numbers[2]};
+}
+
+Box3d PropertyValue::toBox3() const {
+    requireType(m_type, PropertyType::Box3);
+    return {{m_numbers[0], m_numbers[1], m_numbers[2]}, {m_numbers[3], m_numbers[4], m_numbers[5]}};
+}
+
+glm::dmat4 PropertyValue::toTransform() const {
+    requireType(m_type, PropertyType::Transform);
+    glm::dmat4 m(1.0);
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 4; ++column) m[column][row] = m_numbers[size_t(row * 4 + column)];
+    return m;
+}
+
+std::vector<double> PropertyValue::components() const {
+    size_t count = 0;
+    switch (m_type) {
+    case PropertyType::Color:
+    case PropertyType::Point3:
+    case PropertyType::Vector3: count = 3; break;
+    case PropertyType::Box3: count = 6; break;
+    case PropertyType::Transform: count = 12; break;
+    default: break;
+    }
+    return {m_numbers.begin(), m_numbers.begin() + std::ptrdiff_t(count)};
 }
 
 const std::string &PropertyValue::toChoice() const {
@@ -152,8 +221,20 @@ std::string PropertyValue::toString() const {
     case PropertyType::Int: return std::to_string(int(m_number));
     case PropertyType::Real: return detail::shortestText(m_number);
     case PropertyType::Color:
-        return detail::shortestText(m_color.r) + "," + detail::shortestText(m_color.g) + "," +
-               detail::shortestText(m_color.b);
+        // Colours are single precision: their shortest float text reads back exactly.
+        return detail::shortestText(float(m_numbers[0])) + "," + detail::shortestText(float(m_numbers[1])) + "," +
+               detail::shortestText(float(m_numbers[2]));
+    case PropertyType::Point3:
+    case PropertyType::Vector3:
+    case PropertyType::Box3:
+    case PropertyType::Transform: {
+        std::string text;
+        for (double number : components()) {
+            if (!text.empty()) text += ',';
+            text += detail::shortestText(number);
+        }
+        return text;
+    }
     case PropertyType::Choice: return m_text;
     case PropertyType::LayerSet: return layerSetToString(m_bits);
     case PropertyType::RayTypeSet: return rayTypeSetToString(uint8_t(m_bits));

@@ -60,6 +60,28 @@ uint8_t PropertyValues::rayTypes(std::string_view name) const {
     return typedRead(name, [&] { return value(name).toRayTypeSet(); });
 }
 
+glm::dvec3 PropertyValues::point3(std::string_view name) const {
+    return typedRead(name, [&] { return value(name).toPoint3(); });
+}
+
+glm::dvec3 PropertyValues::vector3(std::string_view name) const {
+    return typedRead(name, [&] { return value(name).toVector3(); });
+}
+
+Box3d PropertyValues::box3(std::string_view name) const {
+    return typedRead(name, [&] { return value(name).toBox3(); });
+}
+
+glm::dmat4 PropertyValues::transform(std::string_view name) const {
+    return typedRead(name, [&] { return value(name).toTransform(); });
+}
+
+const PropertyDecl &PropertyValues::declaration(std::string_view name) const {
+    for (const PropertyDecl &decl : m_table)
+        if (decl.name == name) return decl;
+    throw Error("lens properties", "no property '" + std::string(name) + "' is declared");
+}
+
 std::vector<std::string> PropertyValues::unreadNames() const {
     std::vector<std::string> names;
     for (size_t i = 0; i < m_table.size(); ++i)

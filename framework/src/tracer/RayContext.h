@@ -57,7 +57,7 @@ struct RayContext {
 
     RayContext(const Ray &r, const RayQuery &q)
         : ray(r), tMin(q.tMin), tMax(q.tMax), layerMask(q.layerMask), query(&q),
-          hasClips(q.clipCount > 0) {
+          hasClips(q.clipCount() > 0) {
 #if defined(__SSE2__)
         // One divps instead of three divss (same correctly rounded quotients per lane).
         alignas(16) float inv[4];

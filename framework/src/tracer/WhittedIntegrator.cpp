@@ -85,6 +85,10 @@ IntegratorPlan WhittedIntegrator::plan(const RayPolicy &policy, StageSelection s
         plan.forcedShadows = m_hasTransparentMaterials || m_hasCutOutMaterials ? ShadowStage::TransparentWalk
                                                                                : ShadowStage::AnyHit;
     plan.shadows = plan.forcedShadows;
+    // The opacity stage changes what the image shows, so no stage selection skips it.
+    for (int layer = 0; layer < kMaxLayers; ++layer)
+        if (!(shading.layerOpacity[size_t(layer)] >= 1.f)) plan.translucentLayers |= layerBit(layer);
+    plan.translucentLayers &= m_layersWithGeometry & policy.query(RayType::Primary).layerMask;
     if (selection == StageSelection::ForceAll) return plan; // every stage, every colour map
 
     if (plan.forcedShadows != ShadowStage::Off) {
@@ -192,8 +196,34 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
     if (glm::dot(ns, ng) < 0.f) ns = ng;
 
     // Eq. 1: A + Σ I·(P·(L·N) + Ks·S·(N·H)^Ps) / D
-    glm::vec3 local = m.ambient * scene.ambientLight;
     const ShadingPolicy &shading = policy.shading;
+    // Opacity stage: a partly opaque primary hit is blended with what the ray meets when it goes
+    // on through the surface (the same constraints, t still counted from the camera).
+    // A primary ray's depth counts the surfaces it went through: depth peeling passes the first
+    // peelSurfaces ones at opacity 0.
+    float alpha = 1.f;
+    glm::vec3 behind(0.f);
+    const bool peeled = type == RayType::Primary && depth < std::min(shading.peelSurfaces, kDepthCeiling);
+    if (peeled ||
+        (type == RayType::Primary && (plan.translucentLayers & layerBit(hit.layer)) != 0 && depth < kDepthCeiling)) {
+        const float facing = std::min(std::abs(glm::dot(surface.shadingNormal, d)), 1.f);
+        const float opacity = std::clamp(shading.layerOpacity[hit.layer], 0.f, 1.f);
+        alpha = peeled ? 0.f : opacity + (1.f - opacity) * std::clamp(shading.edgeOpacity, 0.f, 1.f) * (1.f - facing);
+        RayPolicy onwardPolicy = policy;
+        RayQuery &onwardQuery = onwardPolicy.query(RayType::Primary);
+        onwardQuery.tMin = std::max(0.f, onwardQuery.tMin - hit.t);
+        onwardQuery.tMax = onwardQuery.tMax - hit.t;
+        Ray onward{offsetRayOrigin(si.position, si.positionError, ng, d), d};
+        onward.coneWidth = coneWidth;
+        onward.coneSpread = ray.coneSpread;
+        // depth + 1 bounds the walk through stacked surfaces (the ceiling); it is no bounce.
+        behind = trace(onward, RayType::Primary, depth + 1, onwardPolicy, plan, counters);
+        if (alpha <= 0.f) return behind;
+    }
+    const auto withBehind = [&](const glm::vec3 &front) {
+        return alpha < 1.f ? alpha * front + (1.f - alpha) * behind : front;
+    };
+    glm::vec3 local = m.ambient * scene.ambientLight;
     for (const Light &light : scene.lights) {
         glm::vec3 toLight;
         float distance;
@@ -241,9 +271,9 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
     glm::vec3 color = local * (1.f - std::clamp(surface.transparency, 0.f, 1.f)) + surface.emission;
     if ((plan.secondaryRayTypes & rayTypeBit(type)) == 0) {
         ++counters.skippedSecondaryChecks;
-        return color;
+        return withBehind(color);
     }
-    if (depth >= maxDepth || (reflectWeight <= 0.f && refractWeight <= 0.f)) return color;
+    if (depth >= maxDepth || (reflectWeight <= 0.f && refractWeight <= 0.f)) return withBehind(color);
 
     const float cosI = -glm::dot(ns, d);
     glm::vec3 refracted(0.f);
@@ -276,7 +306,7 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
                                         reflectWeight > 0.f ? std::clamp(reflectivity / reflectWeight, 0.f, 1.f) : 0.f);
         color += reflectWeight * tint * trace(reflectRay, RayType::Reflection, depth + 1, policy, plan, counters);
     }
-    return color + refractWeight * refracted;
+    return withBehind(color + refractWeight * refracted);
 }
 
 } // namespace mvcl

@@ -37,7 +37,7 @@ Camera Camera::framing(const Bounds3f &bounds, float verticalFovDegrees, float a
     // Orient first at unit distance, then back off until every box corner is inside both the
     // vertical and the horizontal field of view (tighter than the bounding sphere for long models).
     const Camera oriented = lookAt(center + toEye, center, up, verticalFovDegrees);
-    const glm::mat3 &axes = oriented.worldFromCamera(); // right, up, backward
+    const glm::mat3 &axes = oriented.sceneFromCamera(); // right, up, backward
     const float tanV = oriented.m_tanHalfFov;
     const float tanH = tanV * aspect;
     float distance = 0.f;
@@ -63,7 +63,7 @@ void Camera::update() {
         right = glm::cross(forward, std::abs(forward.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0));
     right = glm::normalize(right);
     const glm::vec3 trueUp = glm::cross(right, forward);
-    m_worldFromCamera = glm::mat3(right, trueUp, -forward);
+    m_sceneFromCamera = glm::mat3(right, trueUp, -forward);
     m_tanHalfFov = std::tan(glm::radians(std::clamp(m_verticalFovDegrees, 1e-3f, 179.f)) * 0.5f);
 }
 
@@ -71,7 +71,7 @@ Ray Camera::generateRay(float x, float y, int width, int height) const {
     const float aspect = float(width) / float(height);
     const float sx = (2.f * x / float(width) - 1.f) * m_tanHalfFov * aspect;
     const float sy = (1.f - 2.f * y / float(height)) * m_tanHalfFov;
-    const glm::vec3 dir = m_worldFromCamera * glm::vec3(sx, sy, -1.f);
+    const glm::vec3 dir = m_sceneFromCamera * glm::vec3(sx, sy, -1.f);
     Ray ray{m_eye, glm::normalize(dir)};
     // One pixel's angle: what a texture lookup at distance t must cover (ray cones).
     ray.coneSpread = 2.f * m_tanHalfFov / float(height);

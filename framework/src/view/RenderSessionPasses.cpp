@@ -433,12 +433,21 @@ RenderPassStats RenderSession::Private::renderPass() {
         cancel = false;
         passRunning = true;
     }
+    // Every lens as it is in this session's scene and view: a lens that depends on the view
+    // gets a new snapshot when the camera or size changes, and so a new policy map below.
+    LensContext context = sceneContext;
+    context.camera = {"", newCamera.eye(), newCamera.target(), newCamera.up(), newCamera.verticalFovDegrees()};
+    context.imageWidth = newSettings.width;
+    context.imageHeight = newSettings.height;
     std::vector<detail::LensState> newLenses;
-    for (const std::shared_ptr<Lens> &lens : lensList) newLenses.push_back({lens, lens->snapshot()});
+    std::vector<const LensSnapshot *> committed; // what hasWork() compares with
+    for (const std::shared_ptr<Lens> &lens : lensList) {
+        committed.push_back(lens->snapshot().get());
+        newLenses.push_back({lens, lens->snapshotIn(context)});
+    }
     {
         std::lock_guard lock(stagedMutex);
-        appliedSnapshots.clear();
-        for (const detail::LensState &l : newLenses) appliedSnapshots.push_back(l.snapshot.get());
+        appliedSnapshots = std::move(committed);
     }
 
     // 2. What the edits invalidate.
@@ -455,7 +464,7 @@ RenderPassStats RenderSession::Private::renderPass() {
         const Clock::time_point composeStart = Clock::now();
         LensStack stack;
         for (const std::shared_ptr<Lens> &lens : lensList) stack.add(lens);
-        PolicyMap newMap = stack.compose(base, width(), height(), threads());
+        PolicyMap newMap = stack.compose(context, base, threads());
         if (!restartAll && !cameraMoved) {
             const PixelRect area = clipTo(newBaseVersion != baseVersion
                                               ? PixelRect{0, 0, width(), height()}

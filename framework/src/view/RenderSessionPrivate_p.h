@@ -7,7 +7,9 @@
 #include <mvcl/view/RenderSession.h>
 
 #include <mvcl/core/WorkerPool.h>
+#include <mvcl/lens/LensContext.h>
 #include <mvcl/lens/PolicyMap.h>
+#include <mvcl/tracer/Tracer.h>
 #include <mvcl/tracer/WhittedIntegrator.h>
 
 #include "PixelTracer_p.h"
@@ -46,7 +48,7 @@ inline PixelRect clipTo(const PixelRect &r, int width, int height) {
 }
 
 inline bool sameCamera(const Camera &a, const Camera &b) {
-    return a.eye() == b.eye() && a.target() == b.target() && a.up() == b.up() && a.verticalFov() == b.verticalFov();
+    return a.eye() == b.eye() && a.target() == b.target() && a.up() == b.up() && a.verticalFovDegrees() == b.verticalFovDegrees();
 }
 
 } // namespace detail
@@ -54,9 +56,10 @@ inline bool sameCamera(const Camera &a, const Camera &b) {
 struct RenderSession::Private {
     using Clock = detail::Clock;
 
-    explicit Private(const Tracer &t) : tracer(t), integrator(t) {}
+    explicit Private(const Tracer &t) : tracer(t), sceneContext(LensContext::forScene(t.scene())), integrator(t) {}
 
     const Tracer &tracer;
+    const LensContext sceneContext; ///< the scene part of the lenses' context, computed once
     const WhittedIntegrator integrator;
 
     // --- Staged edits: any thread, under stagedMutex. ---

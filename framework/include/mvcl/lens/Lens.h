@@ -8,7 +8,13 @@
 /// A plugin derives from Lens, passes its static LensInfo to the constructor and implements
 /// contribute(). Every lens also has the common property "rays" (which ray types it acts on;
 /// its default comes from LensInfo::defaultRayTypes).
+///
+/// contribute() sees a LensContext (camera, image size, scene bounds, world origin, layers).
+/// commit() passes the staged context (setContext); a render session asks for snapshotIn() its
+/// own context, which re-runs contribute() on the committed values only when the context
+/// differs in what the lens depends on (the scene always, the view if LensInfo::dependsOnView).
 
+#include <mvcl/lens/LensContext.h>
 #include <mvcl/lens/LensContribution.h>
 #include <mvcl/lens/LensInfo.h>
 #include <mvcl/lens/LensRegion.h>
@@ -29,6 +35,9 @@ struct LensSnapshot {
     LensRegion region;
     /// Already restricted to the lens's "rays".
     LensContribution contribution;
+    /// LensInfo::algebra.idempotent: the stack composes an equal lens right above this one as
+    /// one lens, feathered edges included.
+    bool idempotent = false;
 };
 
 class LensPrivate;
@@ -55,6 +64,9 @@ public:
     void setEnabled(bool enabled);
     const LensRegion &region() const;
     void setRegion(const LensRegion &region);
+    /// The scene and view the next commit() builds the contribution in.
+    const LensContext &context() const;
+    void setContext(const LensContext &context);
     /// Staged value of a declared property; throws mvcl::Error naming the lens for unknown keys.
     PropertyValue property(std::string_view name) const;
     /// Stages a value; throws mvcl::Error for unknown keys, a wrong type or out-of-range values.
@@ -65,23 +77,32 @@ public:
     void resetProperties();
     bool hasUncommittedChanges() const;
 
-    /// Validates the staged state, builds the contribution and publishes a new snapshot.
-    /// On error throws mvcl::Error and keeps the previous snapshot.
+    /// Validates the staged state, builds the contribution in the staged context, checks it
+    /// (LensContribution::validate: finite numbers, valid clip volumes, ranges) and publishes a
+    /// new snapshot. On error throws mvcl::Error naming the lens and keeps the previous snapshot.
     void commit();
     /// The last committed state; never null.
     std::shared_ptr<const LensSnapshot> snapshot() const;
+    /// The last committed state as it is in `context`: snapshot() itself when `context` agrees
+    /// with the committed one in what this lens depends on (scene; view too if
+    /// LensInfo::dependsOnView), else the committed values and region re-contributed in
+    /// `context` (the last such result is kept, so equal contexts give the same pointer). Any
+    /// thread; never throws: a contribution that fails in `context` gives a disabled snapshot.
+    std::shared_ptr<const LensSnapshot> snapshotIn(const LensContext &context) const;
     /// Committed property values in table order (for files and round trips).
     std::vector<PropertyValue> committedValues() const;
     /// Declared parameters the last commit's contribute() did not read (a plugin bug).
     std::vector<std::string> unreadProperties() const;
 
 protected:
-    /// Builds the lens's contribution from committed values. Called by commit() only, on the
-    /// committing thread; must not depend on anything but its arguments.
-    virtual LensContribution contribute(const PropertyValues &properties,
-                                        const LensRegion &region) const = 0;
+    /// Builds the lens's contribution from committed values in `context`. Called by commit()
+    /// and by snapshotIn(), on any thread; must not depend on anything but its arguments.
+    /// Reading the camera or image size from `context` requires LensInfo::dependsOnView.
+    virtual LensContribution contribute(const PropertyValues &properties, const LensRegion &region,
+                                        const LensContext &context) const = 0;
 
 private:
+    friend class LensPrivate; // calls contribute() for commit() and snapshotIn()
     std::unique_ptr<LensPrivate> d;
 };
 

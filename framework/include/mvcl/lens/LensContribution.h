@@ -1,6 +1,7 @@
 #pragma once
 /// \file LensContribution.h
-/// What one lens asks of the pixels under it, as plain data, one part per stage of BRIEF §3.
+/// What one lens asks of the pixels under it, as plain data, one part per stage of a pixel's
+/// rendering: ray shaping, visibility, shading, colour.
 /// The lens stack folds contributions onto the base policy (see PolicyComposition.h); the
 /// renderer never calls into a lens.
 
@@ -22,6 +23,10 @@ struct ShadingOverride {
     std::optional<bool> reflections;
     std::optional<bool> refractions;
     std::optional<int> maxDepth;
+    /// The opacity stage (primary rays): see ShadingPolicy::layerOpacity and edgeOpacity.
+    std::optional<std::array<float, kMaxLayers>> layerOpacity;
+    std::optional<float> edgeOpacity;
+    std::optional<int> peelSurfaces; ///< see ShadingPolicy::peelSurfaces (primary rays)
 
     void applyTo(ShadingPolicy &shading) const;
     bool isEmpty() const;
@@ -47,6 +52,14 @@ struct LensContribution {
     LensContribution restrictedTo(uint8_t rayTypes) const;
     /// True when applying it changes no policy.
     bool isIdentity() const;
+    bool operator==(const LensContribution &other) const = default;
+    /// Throws mvcl::Error("contribution", problem) unless every number is finite, ray shaping is
+    /// an invertible affine map, every t-range has 0 ≤ tMin ≤ tMax, every clip volume is valid
+    /// (ClipVolume::isValid), shadow strength, layer opacities and edge opacity lie in [0, 1], the
+    /// tint is ≥ 0 and maxDepth ≥ 0.
+    /// Lens::commit() calls it, so that a bad contribution is an error at commit, never on the
+    /// render path.
+    void validate() const;
 };
 
 } // namespace mvcl

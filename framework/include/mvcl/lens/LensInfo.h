@@ -1,7 +1,7 @@
 #pragma once
 /// \file LensInfo.h
 /// What a lens type is: its name, a description, its parameter table, the ray types it acts on
-/// by default, and its declared algebra. One static LensInfo per plugin.
+/// by default, its declared algebra and whether it follows the view. One static LensInfo per plugin.
 
 #include <mvcl/lens/PropertyDecl.h>
 #include <mvcl/tracer/RayPolicy.h>
@@ -26,6 +26,10 @@ struct LensInfo {
     PropertyTable properties; ///< the lens's own parameters ("rays" is added by Lens)
     uint8_t defaultRayTypes = kAllRayTypes; ///< default of the common "rays" property
     LensAlgebra algebra;
+    /// contribute() reads the camera or the image size of its LensContext (or takes properties
+    /// in view space): the lens is re-contributed whenever the view changes. The conformance
+    /// suite checks that a lens without it contributes the same under any view.
+    bool dependsOnView = false;
 };
 
 } // namespace mvcl

@@ -15,7 +15,7 @@
 #include <cstdint>
 
 /// Bump on any change to MvclLensPluginEntry, Lens, LensInfo or LensContribution layout.
-#define MVCL_LENS_ABI_VERSION 1u
+#define MVCL_LENS_ABI_VERSION 2u
 
 /// Compiler and standard library the plugin was built with: C++ objects (std::string in
 /// LensInfo, std::shared_ptr) cross the boundary, so both sides must agree.

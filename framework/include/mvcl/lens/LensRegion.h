@@ -73,8 +73,12 @@ public:
     /// many pixels at a time.
     void edgeCoverage(int y, const RowSpan &span, int width, int height, std::span<float> coverage) const;
 
-    /// Throws mvcl::Error("lens region", problem) for non-finite values, size ≤ 0, fewer than
-    /// 3 polygon points, negative feather or outline.
+    /// Zero width or height: the region covers no pixel and the lens has no effect (not an
+    /// error: dragging a lens to nothing is a normal edit).
+    bool isEmpty() const;
+
+    /// Throws mvcl::Error("lens region", problem) for non-finite values, a negative size, fewer
+    /// than 3 polygon points, negative feather or outline.
     void validate() const;
 
     bool operator==(const LensRegion &other) const = default;

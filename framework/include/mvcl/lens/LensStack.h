@@ -50,7 +50,14 @@ public:
 
     /// The policy map of a width × height view over `base`, composed on at most `threads`
     /// threads of the worker pool (0 = all cores). The map is the same for any thread count.
+    /// Never throws for clip volumes that do not fit: see PolicyMap::droppedClipVolumes().
     PolicyMap compose(const RayPolicy &base, int width, int height, int threads = 0) const;
+    /// The same with every lens as it is in `context` (Lens::snapshotIn), at the context's image
+    /// size: what a render session shows.
+    PolicyMap compose(const LensContext &context, const RayPolicy &base, int threads = 0) const;
+    /// Throws mvcl::Error("lens stack", ...) naming the count when `map` (composed by this
+    /// stack) left clip volumes out: for tools that must not render a wrong cut.
+    static void checkClipVolumes(const PolicyMap &map);
     /// The policy of pixels fully covered by exactly the lenses in `lensSet` (bit i = lens i).
     PixelPolicy composeSet(const RayPolicy &base, uint64_t lensSet) const;
 

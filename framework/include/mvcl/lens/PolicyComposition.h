@@ -1,6 +1,6 @@
 #pragma once
 /// \file PolicyComposition.h
-/// The composition rules of BRIEF §3 as pure functions, so every rule has its own tests:
+/// The composition rules of the lens stack as pure functions, so every rule has its own tests:
 ///   ray shaping  — maps chain so that the upper lens looks at the image of the lower one;
 ///   visibility   — intersection of constraints (commutative, associative, idempotent);
 ///   shading      — the upper lens overrides the fields it sets;
@@ -12,14 +12,19 @@
 namespace mvcl {
 
 /// Hits must satisfy both: layer masks AND-ed, t-ranges intersected, clip volumes of both
-/// (identical volumes kept once). Throws mvcl::Error("lens stack", ...) when the clip volumes
-/// together exceed kMaxClipVolumes.
-RayQuery intersectQueries(const RayQuery &a, const RayQuery &b);
+/// (identical volumes kept once). When the volumes together exceed kMaxClipVolumes, volumes
+/// whose intersection keeps their shape are merged (two kept-inside boxes; two half-spaces with
+/// the same normal and keep); any of `b`'s that still do not fit are left out and counted in
+/// `*droppedClips`. Never throws: composition runs on the render path, and LensStack::compose
+/// reports the count as PolicyMap::droppedClipVolumes().
+RayQuery intersectQueries(const RayQuery &a, const RayQuery &b, int *droppedClips = nullptr);
 
 /// Colour map that applies `lower` first, then `upper`.
 ColorPolicy composeColor(const ColorPolicy &lower, const ColorPolicy &upper);
 
 /// `below` with `lens` applied on top of it.
-PixelPolicy applyContribution(const PixelPolicy &below, const LensContribution &lens);
+/// Clip volumes that do not fit are counted in `*droppedClips` (see intersectQueries).
+PixelPolicy applyContribution(const PixelPolicy &below, const LensContribution &lens,
+                              int *droppedClips = nullptr);
 
 } // namespace mvcl

@@ -55,6 +55,13 @@ public:
     /// Number of pixels that blend two or more policies.
     std::size_t blendedPixelCount() const;
 
+    /// Clip volumes that overlapping lenses asked for beyond kMaxClipVolumes per ray type and
+    /// that could not be merged, summed over the map's policies: those policies cut less than
+    /// their lenses asked. 0 for a map that renders exactly what its lenses say. Composition
+    /// never throws for this; tools report it (mvcl-render fails, see LensStack::compose).
+    int droppedClipVolumes() const { return m_droppedClipVolumes; }
+    void setDroppedClipVolumes(int count) { m_droppedClipVolumes = count; }
+
     /// Mixes by index, for loops that walk whole rows (comparing maps, rendering): the mix
     /// index of every pixel of row y, and a mix's terms.
     std::span<const uint32_t> rowMixIndices(int y) const {
@@ -95,6 +102,7 @@ private:
     std::vector<Mix> m_mixes;                  // single-policy mixes and blends, interleaved
     std::vector<uint32_t> m_singleMixOfPolicy; // policy index → its weight-1 mix
     std::vector<uint32_t> m_mixOfPixel;
+    int m_droppedClipVolumes = 0;
 };
 
 } // namespace mvcl

@@ -17,8 +17,11 @@ struct PropertyDecl {
     std::string name;  ///< lowerCamelCase key used in files and on the command line
     PropertyType type = PropertyType::Bool;
     PropertyValue defaultValue;
-    double minimum = -std::numeric_limits<double>::infinity(); ///< Int/Real/Color components
+    /// Int, Real; per component for Color, Point3, Vector3 and Box3 (not Transform).
+    double minimum = -std::numeric_limits<double>::infinity();
     double maximum = std::numeric_limits<double>::infinity();
+    /// Point3, Vector3, Box3, Transform: the space the value is given in (LensContext converts).
+    PropertySpace space = PropertySpace::World;
     std::string unit;  ///< e.g. "scene units", "px"; empty if unitless
     std::string doc;   ///< one sentence for docs, tooltips and --help
     std::vector<std::string> choices; ///< Choice only
@@ -34,6 +37,17 @@ struct PropertyDecl {
                                std::vector<std::string> choices, std::string doc);
     static PropertyDecl layers(std::string name, uint32_t defaultMask, std::string doc);
     static PropertyDecl rayTypes(std::string name, uint8_t defaultMask, std::string doc);
+    /// Components range over (−∞, ∞) unless narrowed.
+    static PropertyDecl point3(std::string name, const glm::dvec3 &defaultValue, PropertySpace space,
+                               std::string unit, std::string doc);
+    static PropertyDecl vector3(std::string name, const glm::dvec3 &defaultValue, PropertySpace space,
+                                std::string unit, std::string doc);
+    /// A box's minimum must not exceed its maximum on any axis.
+    static PropertyDecl box3(std::string name, const Box3d &defaultValue, PropertySpace space,
+                             std::string unit, std::string doc);
+    /// Finite, with an invertible linear part.
+    static PropertyDecl transform(std::string name, const glm::dmat4 &defaultValue, PropertySpace space,
+                                  std::string doc);
 
     /// Parses `text` into a value of this type and checks it; throws mvcl::Error(name, problem).
     PropertyValue parse(std::string_view text) const;

@@ -25,6 +25,14 @@ public:
     const std::string &choice(std::string_view name) const;
     uint32_t layers(std::string_view name) const;
     uint8_t rayTypes(std::string_view name) const;
+    /// Spatial values as declared (in their declaration's space); LensContext::scenePoint and
+    /// its siblings turn them into scene space, PropertyDecl::space says which space.
+    glm::dvec3 point3(std::string_view name) const;
+    glm::dvec3 vector3(std::string_view name) const;
+    Box3d box3(std::string_view name) const;
+    glm::dmat4 transform(std::string_view name) const;
+    /// The declaration of `name` (its space, range); does not count as a read.
+    const PropertyDecl &declaration(std::string_view name) const;
     const PropertyValue &value(std::string_view name) const;
 
     /// Declared names that no read has touched yet.

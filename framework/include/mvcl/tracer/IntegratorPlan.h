@@ -47,6 +47,9 @@ struct IntegratorPlan {
     uint8_t secondaryRayTypes = kAllRayTypes;
     /// The policy's colour map is applied (under SkipUnneeded only when it is not the identity).
     bool appliesColorMap = true;
+    /// Layers whose primary hits are partly transparent (ShadingPolicy::layerOpacity < 1) and
+    /// that primary rays may hit: the opacity stage runs only at hits on these.
+    uint32_t translucentLayers = 0;
 };
 
 } // namespace mvcl

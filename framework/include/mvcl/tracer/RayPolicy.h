@@ -1,7 +1,7 @@
 #pragma once
 /// \file RayPolicy.h
-/// What the tracer does for one pixel, as plain data. Lenses (issue "Lenses") compose into one
-/// RayPolicy per distinct overlap set; the integrator reads it and never calls back into a lens.
+/// What the tracer does for one pixel, as plain data. Lenses compose into one RayPolicy per
+/// distinct overlap set; the integrator reads it and never calls back into a lens.
 
 #include <mvcl/tracer/RayQuery.h>
 
@@ -20,6 +20,13 @@ inline constexpr int kRayTypeCount = 4;
 constexpr uint8_t rayTypeBit(RayType type) { return uint8_t(1u << unsigned(type)); }
 inline constexpr uint8_t kAllRayTypes = 0x0f;
 
+/// Every layer at `opacity` (for ShadingPolicy::layerOpacity).
+constexpr std::array<float, kMaxLayers> filledOpacity(float opacity) {
+    std::array<float, kMaxLayers> opacities{};
+    for (float &o : opacities) o = opacity;
+    return opacities;
+}
+
 /// How hits are lit.
 struct ShadingPolicy {
     bool shadows = true;      ///< trace shadow rays at all
@@ -28,6 +35,17 @@ struct ShadingPolicy {
     bool reflections = true;  ///< trace mirror rays
     bool refractions = true;  ///< trace refracted rays
     int maxDepth = 8;         ///< bounces after the primary hit (≥ 0)
+    /// Opacity of each layer's surfaces to primary rays, in [0, 1]: below 1 a primary hit's
+    /// shading is blended with what the ray sees when it continues through the surface
+    /// (alpha·front + (1 − alpha)·behind), so outer layers can be translucent instead of gone.
+    /// Shadows, reflections and refractions still see every surface as it is.
+    std::array<float, kMaxLayers> layerOpacity = filledOpacity(1.f);
+    /// Raises a translucent surface's opacity where it is seen edge-on, so silhouettes stay
+    /// readable: alpha + (1 − alpha)·edgeOpacity·(1 − |N·V|), in [0, 1].
+    float edgeOpacity = 0.f;
+    /// Primary rays pass through this many surfaces and show the next one (depth peeling: 0 =
+    /// the first surface, as usual). Needs no layers: it counts surfaces along the ray.
+    int peelSurfaces = 0;
 
     bool operator==(const ShadingPolicy &other) const = default;
 };

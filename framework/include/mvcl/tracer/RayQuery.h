@@ -10,43 +10,77 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <span>
 
 namespace mvcl {
 
-/// A region of space whose hits are discarded (a cut) or kept exclusively.
-struct ClipVolume {
+/// A region of scene space whose hits are discarded (a cut) or kept exclusively. Made by one of
+/// the factories; the accessors name what each shape stores.
+class ClipVolume {
+public:
     enum class Shape : uint8_t {
-        Box,       ///< axis-aligned box [a, b]
-        Sphere,    ///< centre a, radius `radius`
-        HalfSpace, ///< {p : dot(a, p) ≥ radius}; a is the unit normal
+        Box,       ///< axis-aligned box [boxMin, boxMax]
+        Sphere,    ///< ball of `radius` around `center`
+        HalfSpace, ///< {p : dot(normal, p) ≥ offset}
     };
     enum class Keep : uint8_t {
         Outside, ///< hits inside the volume are removed (a cutaway)
         Inside,  ///< only hits inside the volume survive
     };
-    Shape shape = Shape::Box;
-    Keep keep = Keep::Outside;
-    glm::vec3 a{0.f};
-    glm::vec3 b{0.f};
-    float radius = 0.f;
+
+    ClipVolume() = default; ///< the empty box at the origin, cut away (removes nothing)
+    static ClipVolume box(const glm::vec3 &boxMin, const glm::vec3 &boxMax, Keep keep) {
+        return {Shape::Box, keep, boxMin, boxMax, 0.f};
+    }
+    static ClipVolume sphere(const glm::vec3 &center, float radius, Keep keep) {
+        return {Shape::Sphere, keep, center, glm::vec3(0.f), radius};
+    }
+    /// `normal` need not be unit length; the test is dot(normal, p) ≥ offset either way.
+    static ClipVolume halfSpace(const glm::vec3 &normal, float offset, Keep keep) {
+        return {Shape::HalfSpace, keep, normal, glm::vec3(0.f), offset};
+    }
+
+    Shape shape() const { return m_shape; }
+    Keep keep() const { return m_keep; }
+    const glm::vec3 &boxMin() const { return m_point; }   ///< Box
+    const glm::vec3 &boxMax() const { return m_second; }  ///< Box
+    const glm::vec3 &center() const { return m_point; }   ///< Sphere
+    float radius() const { return m_scalar; }             ///< Sphere
+    const glm::vec3 &normal() const { return m_point; }   ///< HalfSpace
+    float offset() const { return m_scalar; }             ///< HalfSpace
+
+    /// Every number finite, a box's min ≤ max per axis, a radius ≥ 0, a half-space's normal
+    /// not zero: what Lens::commit() checks of every clip volume a lens contributes.
+    bool isValid() const;
 
     bool contains(const glm::vec3 &p) const {
-        switch (shape) {
+        switch (m_shape) {
         case Shape::Box:
-            return p.x >= a.x && p.y >= a.y && p.z >= a.z && p.x <= b.x && p.y <= b.y && p.z <= b.z;
+            return p.x >= m_point.x && p.y >= m_point.y && p.z >= m_point.z && p.x <= m_second.x &&
+                   p.y <= m_second.y && p.z <= m_second.z;
         case Shape::Sphere: {
-            const glm::vec3 d = p - a;
-            return d.x * d.x + d.y * d.y + d.z * d.z <= radius * radius;
+            const glm::vec3 d = p - m_point;
+            return d.x * d.x + d.y * d.y + d.z * d.z <= m_scalar * m_scalar;
         }
         case Shape::HalfSpace:
-            return a.x * p.x + a.y * p.y + a.z * p.z >= radius;
+            return m_point.x * p.x + m_point.y * p.y + m_point.z * p.z >= m_scalar;
         }
         return false;
     }
     /// True if a hit at p survives this volume.
-    bool accepts(const glm::vec3 &p) const { return contains(p) == (keep == Keep::Inside); }
+    bool accepts(const glm::vec3 &p) const { return contains(p) == (m_keep == Keep::Inside); }
 
     bool operator==(const ClipVolume &other) const = default;
+
+private:
+    ClipVolume(Shape shape, Keep keep, const glm::vec3 &point, const glm::vec3 &second, float scalar)
+        : m_shape(shape), m_keep(keep), m_point(point), m_second(second), m_scalar(scalar) {}
+
+    Shape m_shape = Shape::Box;
+    Keep m_keep = Keep::Outside;
+    glm::vec3 m_point{0.f};  // box min, sphere centre, half-space normal
+    glm::vec3 m_second{0.f}; // box max
+    float m_scalar = 0.f;    // sphere radius, half-space offset
 };
 
 inline constexpr int kMaxClipVolumes = 8;
@@ -57,25 +91,40 @@ struct RayQuery {
     float tMax = std::numeric_limits<float>::infinity();
     /// Bit i set: layer i may be hit.
     uint32_t layerMask = kAllLayers;
-    /// Hits must be accepted by every clip volume (intersection of constraints).
-    std::array<ClipVolume, kMaxClipVolumes> clips{};
-    uint8_t clipCount = 0;
+
+    /// Adds a clip volume: hits must be accepted by every one (intersection of constraints).
+    /// A volume equal to one already there is not added again. Throws mvcl::Error("ray query",
+    /// ...) when the query already holds kMaxClipVolumes others (inside contribute() that is
+    /// reported by Lens::commit(), never on the render path).
+    void addClip(const ClipVolume &clip);
+    /// Adds `clip` if there is room or it is already there; false (and the query unchanged) if
+    /// the query is full. For composition code that must not throw.
+    bool tryAddClip(const ClipVolume &clip);
+    void clearClips() { m_clipCount = 0; }
+    int clipCount() const { return m_clipCount; }
+    const ClipVolume &clip(int index) const { return m_clips[size_t(index)]; }
+    std::span<const ClipVolume> clips() const { return {m_clips.data(), size_t(m_clipCount)}; }
 
     bool acceptsPoint(const glm::vec3 &p) const {
-        for (int i = 0; i < clipCount; ++i)
-            if (!clips[i].accepts(p)) return false;
+        for (int i = 0; i < m_clipCount; ++i)
+            if (!m_clips[size_t(i)].accepts(p)) return false;
         return true;
     }
 
-    /// Same range, mask and clip volumes in the same order. Slots past clipCount are not
+    /// Same range, mask and clip volumes in the same order. Slots past clipCount() are not
     /// compared: the tracer never reads them, so they cannot make two queries trace apart.
     bool operator==(const RayQuery &other) const {
-        if (tMin != other.tMin || tMax != other.tMax || layerMask != other.layerMask || clipCount != other.clipCount)
+        if (tMin != other.tMin || tMax != other.tMax || layerMask != other.layerMask ||
+            m_clipCount != other.m_clipCount)
             return false;
-        for (int i = 0; i < clipCount; ++i)
-            if (!(clips[size_t(i)] == other.clips[size_t(i)])) return false;
+        for (int i = 0; i < m_clipCount; ++i)
+            if (!(m_clips[size_t(i)] == other.m_clips[size_t(i)])) return false;
         return true;
     }
+
+private:
+    std::array<ClipVolume, kMaxClipVolumes> m_clips{};
+    uint8_t m_clipCount = 0;
 };
 
 } // namespace mvcl

@@ -30,13 +30,14 @@ public:
     const glm::vec3 &eye() const { return m_eye; }
     const glm::vec3 &target() const { return m_target; }
     const glm::vec3 &up() const { return m_up; }
-    float verticalFov() const { return m_verticalFovDegrees; }
+    float verticalFovDegrees() const { return m_verticalFovDegrees; }
 
     /// Ray through continuous raster position (x, y), (0,0) = top-left corner of the image.
     Ray generateRay(float x, float y, int width, int height) const;
 
-    /// Columns: right, up, backward (−forward), i.e. the rotation worldFromCamera.
-    const glm::mat3 &worldFromCamera() const { return m_worldFromCamera; }
+    /// Columns: right, up, backward (−forward) in scene space, i.e. the rotation from camera
+    /// space to scene space (the camera lives in scene space, like the tracer).
+    const glm::mat3 &sceneFromCamera() const { return m_sceneFromCamera; }
 
     /// Same eye, target, up and field of view (the rest is derived from them).
     bool operator==(const Camera &other) const = default;
@@ -48,7 +49,7 @@ private:
     glm::vec3 m_target{0.f};
     glm::vec3 m_up{0.f, 1.f, 0.f};
     float m_verticalFovDegrees = 45.f;
-    glm::mat3 m_worldFromCamera{1.f};
+    glm::mat3 m_sceneFromCamera{1.f};
     float m_tanHalfFov = 0.f;
 };
 
