@@ -92,6 +92,7 @@ inline bool watertightIntersect(const WatertightRay &r, const glm::vec3 &p0, con
     if (t <= deltaT) return false;
 
     hit.t = t;
+    hit.tError = deltaT;
     hit.b0 = e0 * invDet;
     hit.b1 = e1 * invDet;
     hit.b2 = e2 * invDet;

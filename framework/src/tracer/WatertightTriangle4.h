@@ -28,6 +28,7 @@ inline __m128 mulUnfused4(__m128 a, __m128 b) { return unfused(_mm_mul_ps(a, b))
 
 struct TriangleHit4 {
     alignas(16) float t[4];
+    alignas(16) float tError[4]; ///< δt of each lane (TriangleHit::tError)
     alignas(16) float b0[4];
     alignas(16) float b1[4];
     alignas(16) float b2[4];
@@ -51,8 +52,8 @@ struct WatertightRay4 {
 
 /// Tests the lanes set in `lanes` (bit i = lane i) against the ray; returns the bits of the lanes
 /// hit with their results in `hit`. tMax plays the same role as in watertightIntersect().
-/// Barycentrics = false leaves hit.b0..b2 of the vector lanes unwritten: any-hit queries only
-/// need t, which is the same arithmetic either way.
+/// Barycentrics = false leaves hit.b0..b2 and tError of the vector lanes unwritten: any-hit
+/// queries only need t, which is the same arithmetic either way.
 template <bool Barycentrics = true>
 inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, int lanes, float tMax,
                                 TriangleHit4 &hit) {
@@ -146,6 +147,7 @@ inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, in
             if (hits) {
                 _mm_store_ps(hit.t, t);
                 if (Barycentrics) {
+                    _mm_store_ps(hit.tError, deltaT);
                     _mm_store_ps(hit.b0, _mm_mul_ps(e0, invDet));
                     _mm_store_ps(hit.b1, _mm_mul_ps(e1, invDet));
                     _mm_store_ps(hit.b2, _mm_mul_ps(e2, invDet));
@@ -166,6 +168,7 @@ inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, in
                                  h))
             continue;
         hit.t[lane] = h.t;
+        hit.tError[lane] = h.tError;
         hit.b0[lane] = h.b0;
         hit.b1[lane] = h.b1;
         hit.b2[lane] = h.b2;

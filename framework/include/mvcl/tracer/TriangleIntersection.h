@@ -12,6 +12,9 @@ namespace mvcl {
 struct TriangleHit {
     float t;
     float b0, b1, b2; ///< barycentrics of p0, p1, p2
+    /// Conservative bound on |t − the exact t of the float ray and vertices| from the test's
+    /// error analysis (pbrt-v4 §6.8.4's δt); the tracer's layer priority compares hits with it.
+    float tError;
 };
 
 /// Per-ray constants of the watertight test (permutation and shear), computed once per ray.
