@@ -6,8 +6,8 @@
 // The rule, as a function of the set of candidates (so the answer does not depend on the BVH, the
 // leaf size, the thread count or SSE/AVX2):
 //   - every candidate c (in the query's layers, t range and clip volumes) has an error bound δc
-//     on its t from the intersection test's error analysis (WatertightTriangle.h's δt; γ₂·t for
-//     the double-precision spheres and planes);
+//     on its t from the intersection test's error analysis (orderingError() in
+//     WatertightTriangle.h; γ₂·t for the double-precision spheres and planes);
 //   - the window ends at E = min over candidates of tc + max(2·δc, contact), where contact is the
 //     scene's contact tolerance in units of this ray's t (0 when off). 2·δc is the combined bound
 //     of two hits whose bounds are both δc: two surfaces a hair apart are hit at the same place
@@ -32,6 +32,7 @@ namespace mvcl::detail {
 
 class LayerPriorityHit {
 public:
+    static constexpr bool kUsesTError = true;
     /// contactWindow: the scene's contact tolerance divided by the ray direction's length.
     explicit LayerPriorityHit(float contactWindow) : m_contactWindow(contactWindow) {}
 

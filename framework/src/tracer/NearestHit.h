@@ -12,6 +12,8 @@ namespace mvcl::detail {
 
 class NearestHit {
 public:
+    /// offer() ignores the error bound, so the kernel need not compute it.
+    static constexpr bool kUsesTError = false;
     /// Hits beyond this t cannot change the result (the traversal and kernel cap).
     float cap() const { return m_best.t; }
     /// False when a hit at t (and every farther hit of the same primitive) cannot change the result.

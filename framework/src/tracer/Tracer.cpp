@@ -179,7 +179,7 @@ inline bool testLeaf(uint32_t leaf, const detail::PrimBlock *blocks, const detai
         // exactly; the t of a lane does not depend on the cap.
         const float tCap = AnyHit ? c.tMax : std::min(c.tMax, best.cap());
         detail::TriangleHit4 th;
-        int hits = detail::watertightIntersect4<!AnyHit>(wray, block, lanes, tCap, th);
+        int hits = detail::watertightIntersect4<!AnyHit, !AnyHit && Best::kUsesTError>(wray, block, lanes, tCap, th);
         while (hits) {
             const int lane = std::countr_zero(unsigned(hits));
             hits &= hits - 1;
@@ -190,7 +190,7 @@ inline bool testLeaf(uint32_t leaf, const detail::PrimBlock *blocks, const detai
             }
             found |= best.offer(c, triangleCandidate(info[4 * b + lane], th.t[lane], th.b1[lane],
                                                      th.b2[lane]),
-                                th.tError[lane]);
+                                Best::kUsesTError ? th.tError[lane] : 0.f);
         }
     }
     if (WideLeaf::hasSpheres(leaf)) {
@@ -472,12 +472,22 @@ bool Tracer::Private::closestHitWithContact(const Tracer &tracer, const Ray &ray
 
 bool Tracer::closestHit(const Ray &ray, const RayQuery &query, Hit &hit) const {
     if (!detail::isValidQuery(ray, query)) return false;
+    if (!d->isLayered(query)) {
+        // One layer: the plain nearest hit, the code and the cost of before layer priority.
+        const RayContext c(ray, query);
+        detail::NearestHit best;
+        return d->closestHit(c, best, hit);
+    }
     return d->closestHitWithContact(*this, ray, query, hit, Private::Oracle::Traversal);
 }
 
 bool Tracer::anyHit(const Ray &ray, const RayQuery &query) const {
     if (!detail::isValidQuery(ray, query)) return false;
-    if (!(d->contactDistance > 0.f) || !d->isLayered(query)) return d->anyHitInRange(ray, query);
+    if (!(d->contactDistance > 0.f) || !d->isLayered(query)) {
+        const RayContext c(ray, query);
+        detail::NearestHit unused;
+        return d->testPlanes<true>(c, unused) || d->traverse<true>(c, unused);
+    }
     // With a contact tolerance an inner layer's surface within the tolerance of an outer layer's
     // does not occlude (the facets of differently triangulated touching layers poke through each
     // other): the outermost layer occludes as always, the others only as a closest hit would

@@ -52,9 +52,10 @@ struct WatertightRay4 {
 
 /// Tests the lanes set in `lanes` (bit i = lane i) against the ray; returns the bits of the lanes
 /// hit with their results in `hit`. tMax plays the same role as in watertightIntersect().
-/// Barycentrics = false leaves hit.b0..b2 and tError of the vector lanes unwritten: any-hit
-/// queries only need t, which is the same arithmetic either way.
-template <bool Barycentrics = true>
+/// Barycentrics = false leaves hit.b0..b2 of the vector lanes unwritten: any-hit queries only need
+/// t, which is the same arithmetic either way. OrderingError = false leaves hit.tError of the
+/// vector lanes unwritten: only layer priority reads it.
+template <bool Barycentrics = true, bool OrderingError = false>
 inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, int lanes, float tMax,
                                 TriangleHit4 &hit) {
     const WatertightRay &r = r4.ray;
@@ -146,8 +147,19 @@ inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, in
             hits = candidates & _mm_movemask_ps(accept);
             if (hits) {
                 _mm_store_ps(hit.t, t);
+                if (OrderingError) {
+                    // orderingError() lane by lane.
+                    const __m128 spread = _mm_add_ps(
+                        _mm_add_ps(_mm_and_ps(_mm_sub_ps(z0, t), absMask), _mm_and_ps(_mm_sub_ps(z1, t), absMask)),
+                        _mm_and_ps(_mm_sub_ps(z2, t), absMask));
+                    const __m128 g3 = _mm_set1_ps(gamma(3));
+                    const __m128 terms = _mm_add_ps(
+                        _mm_add_ps(mulUnfused4(g3, _mm_mul_ps(_mm_set1_ps(2.f), maxZt)),
+                                   mulUnfused4(g3, _mm_and_ps(t, absMask))),
+                        mulUnfused4(mulUnfused4(deltaE, spread), _mm_and_ps(invDet, absMask)));
+                    _mm_store_ps(hit.tError, _mm_mul_ps(_mm_set1_ps(2.f), terms));
+                }
                 if (Barycentrics) {
-                    _mm_store_ps(hit.tError, deltaT);
                     _mm_store_ps(hit.b0, _mm_mul_ps(e0, invDet));
                     _mm_store_ps(hit.b1, _mm_mul_ps(e1, invDet));
                     _mm_store_ps(hit.b2, _mm_mul_ps(e2, invDet));
