@@ -478,6 +478,11 @@ bool Tracer::closestHit(const Ray &ray, const RayQuery &query, Hit &hit) const {
         detail::NearestHit best;
         return d->closestHit(c, best, hit);
     }
+    if (!(d->contactDistance > 0.f)) {
+        const RayContext c(ray, query);
+        detail::LayerPriorityHit best(0.f);
+        return d->closestHit(c, best, hit);
+    }
     return d->closestHitWithContact(*this, ray, query, hit, Private::Oracle::Traversal);
 }
 
