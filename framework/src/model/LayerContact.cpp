@@ -1,6 +1,7 @@
 #include <mvcl/model/LayerContact.h>
 
 #include <mvcl/core/Error.h>
+#include <mvcl/core/FloatBits.h>
 
 #include <glm/geometric.hpp>
 
@@ -14,7 +15,10 @@ float LayerContact::sceneUnits(const Bounds3f &sceneBounds) const {
     if (!isEnabled()) return 0.f;
     if (measure == Measure::SceneUnits) return float(distance);
     if (sceneBounds.isEmpty()) return 0.f;
-    return float(distance * double(glm::length(sceneBounds.extent())));
+    // In double, each product on its own: the result must not depend on FMA contraction.
+    const glm::dvec3 e(sceneBounds.extent());
+    const double products[3] = {unfused(e.x * e.x), unfused(e.y * e.y), unfused(e.z * e.z)};
+    return float(distance * std::sqrt(products[0] + products[1] + products[2]));
 }
 
 LayerContact LayerContact::parse(const std::string &text) {

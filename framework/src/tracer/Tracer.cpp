@@ -70,6 +70,12 @@ bool isDegenerate(const glm::vec3 &p0, const glm::vec3 &p1, const glm::vec3 &p2)
 
 uint8_t clampLayer(int layer) { return uint8_t(std::clamp(layer, 0, kMaxLayers - 1)); }
 
+/// |v| with every product rounded on its own: the contact window must not depend on FMA
+/// contraction (FloatBits.h).
+float lengthUnfused(const glm::vec3 &v) {
+    return std::sqrt(mulUnfused(v.x, v.x) + mulUnfused(v.y, v.y) + mulUnfused(v.z, v.z));
+}
+
 /// Robust slab test (Ize 2013). Slabs are taken in the ray's sign order, so a ±0 direction
 /// component gives ±∞ distances with the right sign; an origin exactly on a slab plane gives
 /// 0·∞ = NaN, which the comparisons below discard (the ray lies in the face: treat as inside).
@@ -276,7 +282,7 @@ struct Tracer::Private {
     }
     /// The closest-hit state for a layered query on `ray`.
     detail::LayerPriorityHit layerPriority(const Ray &ray) const {
-        return detail::LayerPriorityHit(contactDistance > 0.f ? contactDistance / glm::length(ray.direction) : 0.f);
+        return detail::LayerPriorityHit(contactDistance > 0.f ? contactDistance / lengthUnfused(ray.direction) : 0.f);
     }
     template <class Best>
     bool closestHit(const RayContext &c, Best &best, Hit &hit) const {
@@ -450,7 +456,10 @@ bool Tracer::Private::touchesOuterLayer(const Tracer &tracer, const Ray &ray, co
     probe.tMin = 0.f;
     probe.tMax = 2.f * contactDistance;
     probe.layerMask = outer;
-    const Ray segment{si.position - contactDistance * si.geometricNormal, si.geometricNormal};
+    const glm::vec3 &n = si.geometricNormal;
+    const glm::vec3 back(mulUnfused(contactDistance, n.x), mulUnfused(contactDistance, n.y),
+                         mulUnfused(contactDistance, n.z));
+    const Ray segment{si.position - back, n};
     return detail::isValidQuery(segment, probe) && anyHitInRange(segment, probe);
 }
 
