@@ -16,6 +16,7 @@
 #include "ConvergenceBench.h"
 
 #include <mvcl/core/WorkerPool.h>
+#include <mvcl/io/SceneLoader.h>
 #include <mvcl/model/BuiltinScenes.h>
 #include <mvcl/model/GltfLoader.h>
 #include <mvcl/model/Scene.h>
@@ -29,6 +30,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -54,6 +56,7 @@ using mvcl::bench::intersectEmbree;
 
 using mvcl::bench::bestSeconds;
 using mvcl::bench::loadMeshes;
+using mvcl::bench::meshesOf;
 using mvcl::bench::parallelRays;
 using mvcl::bench::secondsSince;
 using Clock = mvcl::bench::Clock;
@@ -65,6 +68,9 @@ struct Options {
     int threads = 0;
     int repeat = 3;
     std::string embreeConfig; ///< extra rtcNewDevice options, e.g. "tri_accel=bvh4.triangle4"
+    /// --layers: load as mvcl-render does (layer inference), so that the queries reach several
+    /// layers and pay for layer priority; by default the raw glTF (layers from extras only).
+    bool inferLayers = false;
 };
 
 /// Parses the command line; nullopt when help was asked for (and printed). Throws
@@ -74,7 +80,7 @@ std::optional<Options> parseOptions(int argc, char **argv) {
     CLI::App app("mvcl-bench: our tracer and Embree on the same mesh, rays and threads.", "mvcl-bench");
     app.formatter(std::make_shared<mvcl::cli::UsageFormatter>(
         "usage: mvcl-bench [model.glb | builtin:<name>] [--size WxH] [--threads N] [--repeat R]\n"
-        "                  [--embree-config OPTIONS]"));
+        "                  [--embree-config OPTIONS] [--layers]"));
     app.set_help_flag("-h,--help", "this text");
     app.add_option("model", o.model, "model file or builtin:NAME (default the 2CylinderEngine)")->option_text(" ");
     mvcl::cli::addImageSizeOption(app, o.width, o.height, "primary rays, one per pixel of a WxH image (default 1024x1024)");
@@ -84,6 +90,9 @@ std::optional<Options> parseOptions(int argc, char **argv) {
     app.add_option("--repeat", o.repeat, "best of R runs (default 3)")->type_name("R")->check(mvcl::cli::wholeNumberIn(1, 1000));
     app.add_option("--embree-config", o.embreeConfig, "extra rtcNewDevice options, e.g. tri_accel=bvh4.triangle4")
         ->type_name("OPTIONS");
+    app.add_flag("--layers", o.inferLayers,
+                 "load the model as mvcl-render does (layer rules none, containment inference), so that\n"
+                 "closest-hit queries reach several layers and pay for layer priority");
     if (mvcl::cli::parseCommandLine(app, std::vector<std::string>(argv + 1, argv + argc))) {
         std::fputs(app.help().c_str(), stdout);
         return std::nullopt;
@@ -150,9 +159,11 @@ int main(int argc, char **argv) {
     try {
         const Options &opt = *options;
         const auto loadStart = Clock::now();
-        const mvcl::Scene scene = loadMeshes(opt.model);
-        std::printf("model %s: %zu meshes, %zu triangles, loaded in %.1f ms\n", opt.model.c_str(),
-                    scene.meshes.size(), scene.triangleCount(), secondsSince(loadStart) * 1e3);
+        const mvcl::Scene scene = opt.inferLayers ? meshesOf(mvcl::loadScene(opt.model)) : loadMeshes(opt.model);
+        uint32_t layers = 0;
+        for (const mvcl::TriangleMesh &m : scene.meshes) layers |= 1u << std::clamp(m.layer, 0, 31);
+        std::printf("model %s: %zu meshes, %zu triangles, %d layers, loaded in %.1f ms\n", opt.model.c_str(),
+                    scene.meshes.size(), scene.triangleCount(), std::popcount(layers), secondsSince(loadStart) * 1e3);
         std::printf("%dx%d primary rays, %d threads, best of %d runs\n", opt.width, opt.height,
                     opt.threads, opt.repeat);
 

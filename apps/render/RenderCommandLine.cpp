@@ -77,6 +77,11 @@ std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::stri
         ->type_name("FILE");
     app->add_option("--layer-rule", cl.layerRules, "inline rules \"glob=layer;glob=layer\" (applied before the file's)")
         ->type_name("RULES");
+    app->add_option("--layer-contact", cl.layerContact,
+                    "touching layers: an outer layer's hit beats a nearer inner layer's within this distance,\n"
+                    "a fraction of the scene's size (1e-4) or in scene units (0.002units); off by default,\n"
+                    "--info suggests one")
+        ->type_name("D");
     app->add_option("--lenses", cl.lensFile,
                     "lens-stack JSON: lenses, and the scene, camera and layer rules unless\n"
                     "given here (command-line layer rules come first, so they win)")

@@ -38,6 +38,7 @@ struct RenderCommandLine {
     std::string camera;              ///< glTF camera index or name; empty = default view
     std::string layerRulesFile;
     std::string layerRules;          ///< "glob=layer;..."
+    std::string layerContact;        ///< --layer-contact, LayerContact::parse() text; empty = the session's or off
     std::string lensFile;            ///< lens-stack JSON (--lenses)
     std::vector<std::string> lensSpecs; ///< "type:key=value,..." (--lens), stacked above the file's
     std::string saveLensesFile;      ///< write the effective stack here (--save-lenses)

@@ -10,6 +10,7 @@
 #include <mvcl/io/LensStackFile.h>
 #include <mvcl/io/SceneLoader.h>
 #include <mvcl/lens/LensRegistry.h>
+#include <mvcl/tracer/LayerContactProbe.h>
 #include <mvcl/tracer/Tracer.h>
 #include <mvcl/view/Camera.h>
 #include <mvcl/view/ImageIO.h>
@@ -166,7 +167,32 @@ ViewRequest viewRequest(const RenderCommandLine &cl) {
         for (const LayerRule &rule : fileRules.rules()) request.loadOptions.layerRules.add(rule);
     }
     request.loadOptions.defaultLights = cl.defaultLights ? DefaultLights::WhenTheFileHasNone : DefaultLights::Never;
+    if (!cl.layerContact.empty()) {
+        try {
+            request.loadOptions.layerContact = LayerContact::parse(cl.layerContact);
+        } catch (const Error &e) { // a usage error, like a bad --layer-rule
+            throw Error("command line", "--layer-contact: " + e.problem());
+        }
+    }
     return request;
+}
+
+/// Near-coincident layers and the contact tolerance that would make them render clean.
+void printLayerContacts(const Scene &scene) {
+    std::printf("contact    %s\n", scene.layerContact.isEnabled()
+                                        ? ("--layer-contact " + scene.layerContact.toString()).c_str()
+                                        : "off");
+    if (scene.layers.layers().size() < 2) return;
+    const Tracer tracer(scene);
+    const LayerContactReport report = probeLayerContacts(tracer);
+    for (const NearCoincidentLayers &p : report.pairs)
+        std::printf("           layers %d and %d nearly touch: %zu of %zu sampled facets within %.3g units\n",
+                    p.outerLayer, p.innerLayer, p.samples, p.sampled, p.maxSeparation);
+    if (report.suggested.isEnabled())
+        std::printf("           suggested: --layer-contact %s (or \"layerContact\": {\"relative\": %s} in a session file)\n",
+                    report.suggested.toString().c_str(), report.suggested.toString().c_str());
+    else if (!report.pairs.empty())
+        std::printf("           they coincide up to float rounding: no tolerance needed\n");
 }
 
 void printLensCosts(const LensStack &stack, const PolicyMap &policies, const RenderPassStats &stats) {
@@ -250,6 +276,7 @@ int run(const RenderCommandLine &cl) {
     const Scene scene = loadScene(setup.source, setup.loadOptions);
     if (cl.info) {
         printInfo(scene);
+        printLayerContacts(scene);
         return kExitOk;
     }
 

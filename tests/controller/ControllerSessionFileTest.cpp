@@ -39,6 +39,27 @@ protected:
     }
 };
 
+/// The session's contact tolerance reaches the scene the tracer is built from, is saved back, and
+/// a session without one turns it off again (the scene is reloaded for it, as for new rules).
+TEST_F(ControllerSessionFileTest, TheContactToleranceTravelsWithTheSession) {
+    const fs::path with = scratchFolder() / "contact-session.json";
+    std::ofstream(with) << R"({"version": 1, "scene": "builtin:cube-in-cube", "layerContact": {"relative": 0.0005}})";
+    auto controller = makeController();
+    EXPECT_FALSE(controller->scene().layerContact.isEnabled());
+    controller->loadSession(with);
+    const LayerContact expected{0.0005, LayerContact::Measure::RelativeToSceneSize};
+    EXPECT_EQ(controller->scene().layerContact, expected);
+    EXPECT_EQ(controller->description().layerContact, expected);
+    const fs::path saved = scratchFolder() / "contact-saved.json";
+    controller->saveSession(saved);
+    EXPECT_NE(readText(saved).find("\"relative\": 0.0005"), std::string::npos) << readText(saved);
+
+    const fs::path without = scratchFolder() / "no-contact-session.json";
+    std::ofstream(without) << R"({"version": 1, "scene": "builtin:cube-in-cube"})";
+    controller->loadSession(without);
+    EXPECT_FALSE(controller->scene().layerContact.isEnabled());
+}
+
 TEST_F(ControllerSessionFileTest, SaveThenLoadGivesTheSameState) {
     const fs::path file = scratchFolder() / "session.json";
     auto edited = editedController();

@@ -198,9 +198,11 @@ void Controller::loadSession(const std::filesystem::path &file) {
     // The app's way of loading (default lights, inference) stays; the rules are the file's.
     request.loadOptions = d->setup.loadOptions;
     request.loadOptions.layerRules = {};
+    request.loadOptions.layerContact = {}; // the file's contact tolerance, like its rules
     ViewSetup setup = ViewSetup::prepare(request, d->registry);
     const bool sameScene = sameSource(setup.source, d->setup.source) &&
-                           sameRules(setup.loadOptions.layerRules, d->setup.loadOptions.layerRules);
+                           sameRules(setup.loadOptions.layerRules, d->setup.loadOptions.layerRules) &&
+                           setup.loadOptions.layerContact == d->setup.loadOptions.layerContact;
     std::unique_ptr<Scene> scene;
     std::unique_ptr<Tracer> tracer;
     if (!sameScene) {

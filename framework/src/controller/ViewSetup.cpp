@@ -36,6 +36,8 @@ ViewSetup ViewSetup::prepare(const ViewRequest &request, const LensRegistry &reg
     setup.loadOptions = request.loadOptions;
     // The file's rules come last: the first matching rule wins, so the request's win.
     for (const LayerRule &rule : setup.session.layerRules.rules()) setup.loadOptions.layerRules.add(rule);
+    // The request's contact tolerance wins over the file's, as its rules do.
+    if (!setup.loadOptions.layerContact.isEnabled()) setup.loadOptions.layerContact = setup.session.layerContact;
     return setup;
 }
 
@@ -74,6 +76,7 @@ LensStackDescription ViewSetup::describe(const Scene &scene, const Camera &camer
     description.camera = ViewCoordinates({1, 1}, scene).worldFromCamera(camera);
     description.layerRules = loadOptions.layerRules;
     description.visibleLayers = visibleLayers;
+    description.layerContact = loadOptions.layerContact;
     description.lenses = lenses; // shares the lenses
     return description;
 }

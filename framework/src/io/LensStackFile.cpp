@@ -230,10 +230,25 @@ std::shared_ptr<Lens> readLens(const Json &value, const LensRegistry &registry, 
     return lens;
 }
 
+/// {"relative": fraction of the scene's size} or {"sceneUnits": distance}, finite and ≥ 0.
+LayerContact readLayerContact(const Json &json, const JsonLocation &where) {
+    const char *expected = "expected {\"relative\": number} or {\"sceneUnits\": number}";
+    if (!json.is_object() || json.size() != 1) where.fail(expected);
+    LayerContact contact;
+    const auto it = json.begin();
+    if (it.key() == "sceneUnits") contact.measure = LayerContact::Measure::SceneUnits;
+    else if (it.key() != "relative") where.fail(expected);
+    if (!it.value().is_number()) where.key(it.key()).fail("expected a number");
+    const double value = it.value().get<double>();
+    if (!std::isfinite(value) || value < 0.0) where.key(it.key()).fail("the tolerance must be finite and not negative");
+    contact.distance = value;
+    return contact;
+}
+
 LensStackDescription readDescription(const Json &document, const LensRegistry &registry,
                                      const JsonLocation &where) {
     static constexpr std::string_view kTopKeys[] = {"version", "scene", "camera", "layerRules", "visibleLayers",
-                                                    "lenses"};
+                                                    "layerContact", "lenses"};
     expectObject(document, where);
     rejectUnknownKeys(document, kTopKeys, where);
     if (document.contains("version")) {
@@ -265,6 +280,8 @@ LensStackDescription readDescription(const Json &document, const LensRegistry &r
             visibleWhere.fail(e.problem());
         }
     }
+    if (document.contains("layerContact"))
+        description.layerContact = readLayerContact(document["layerContact"], where.key("layerContact"));
     if (document.contains("lenses")) {
         const JsonLocation lensesWhere = where.key("lenses");
         const Json &lenses = document["lenses"];
@@ -360,6 +377,9 @@ Json descriptionJson(const LensStackDescription &description) {
         json["layerRules"] = std::move(rules);
     }
     if (description.visibleLayers != kAllLayers) json["visibleLayers"] = layerSetToString(description.visibleLayers);
+    if (const LayerContact &contact = description.layerContact; contact.isEnabled())
+        json["layerContact"] = {{contact.measure == LayerContact::Measure::SceneUnits ? "sceneUnits" : "relative",
+                                 contact.distance}};
     Json lenses = Json::array();
     for (const std::shared_ptr<Lens> &lens : description.lenses.lenses()) lenses.push_back(lensJson(*lens));
     json["lenses"] = std::move(lenses);
@@ -497,6 +517,7 @@ bool operator==(const LensStackDescription &a, const LensStackDescription &b) {
         return sameCommittedLens(*x, *y);
     };
     return a.scene == b.scene && a.camera == b.camera && a.visibleLayers == b.visibleLayers &&
+           a.layerContact == b.layerContact &&
            std::ranges::equal(a.layerRules.rules(), b.layerRules.rules(), sameRule) &&
            std::ranges::equal(a.lenses.lenses(), b.lenses.lenses(), sameLens);
 }

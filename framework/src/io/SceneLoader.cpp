@@ -56,6 +56,7 @@ Scene loadScene(std::string_view source, const SceneLoadOptions &options) {
         return m.layerSource == LayerSource::Unassigned;
     });
     if (anyUnassigned) inferLayersByContainment(scene, options.inference);
+    if (options.layerContact.isEnabled()) scene.layerContact = options.layerContact;
     for (const TriangleMesh &m : scene.meshes) scene.layers.ensure(m.layer);
     for (const Sphere &s : scene.spheres) scene.layers.ensure(s.layer);
     for (const Plane &p : scene.planes) scene.layers.ensure(p.layer);

@@ -2,6 +2,8 @@
 
 #include "AnalyticShapes.h"
 #include "Bvh.h"
+#include "LayerPriorityHit.h"
+#include "NearestHit.h"
 #include "WideBvh.h"
 #include "RayContext.h"
 #include "TraversalIsa.h"
@@ -68,6 +70,12 @@ bool isDegenerate(const glm::vec3 &p0, const glm::vec3 &p1, const glm::vec3 &p2)
 
 uint8_t clampLayer(int layer) { return uint8_t(std::clamp(layer, 0, kMaxLayers - 1)); }
 
+/// |v| with every product rounded on its own: the contact window must not depend on FMA
+/// contraction (FloatBits.h).
+float lengthUnfused(const glm::vec3 &v) {
+    return std::sqrt(mulUnfused(v.x, v.x) + mulUnfused(v.y, v.y) + mulUnfused(v.z, v.z));
+}
+
 /// Robust slab test (Ize 2013). Slabs are taken in the ray's sign order, so a ±0 direction
 /// component gives ±∞ distances with the right sign; an origin exactly on a slab plane gives
 /// 0·∞ = NaN, which the comparisons below discard (the ray lies in the face: treat as inside).
@@ -93,14 +101,9 @@ inline bool intersectBox(const float *b, const RayContext &c, float tHigh, float
     return tNear <= tFar;
 }
 
-/// Offers a candidate to the closest-hit search: it wins if it precedes the best so far in the
-/// total order (t, layer, kind, geometry, primitive) and survives the clip volumes.
-inline bool offer(const RayContext &c, const Hit &cand, Hit &best) {
-    if (!hitPrecedes(cand, best)) return false;
-    if (!c.acceptsPoint(cand.t)) return false;
-    best = cand;
-    return true;
-}
+/// Error bound of a sphere's or plane's t: the roots are computed in double and rounded to
+/// float once, so half an ulp of rounding plus the double arithmetic's far smaller error.
+inline float analyticTError(float t) { return gamma(2) * std::fabs(t); }
 
 /// A triangle lane's hit as a candidate Hit (the t range is checked by the caller).
 inline Hit triangleCandidate(const detail::PrimInfo &info, float t, float b1, float b2) {
@@ -126,11 +129,11 @@ inline Hit analyticCandidate(GeometryKind kind, float t, uint8_t layer, uint32_t
     return cand;
 }
 
-/// Tests the sphere in lane `lane` of a block. For closest hit (AnyHit = false) updates `best`
-/// and returns true if it improved; for any hit returns true on the first accepted hit.
-template <bool AnyHit>
+/// Tests the sphere in lane `lane` of a block. For closest hit (AnyHit = false) offers its hits
+/// to `best` and returns true if it changed; for any hit returns true on the first accepted hit.
+template <bool AnyHit, class Best>
 inline bool testSphere(const detail::PrimBlock &block, int lane, const detail::PrimInfo &info,
-                       const RayContext &c, Hit &best) {
+                       const RayContext &c, Best &best) {
     double roots[2];
     const int n = detail::sphereRoots(c.ray.origin, c.ray.direction, block.vertex(lane, 0),
                                       block.v[1][0][lane], roots);
@@ -142,10 +145,10 @@ inline bool testSphere(const detail::PrimBlock &block, int lane, const detail::P
             if (c.acceptsPoint(t)) return true;
             continue;
         }
-        // The far root cannot precede the near one, so stop once the near one loses on t;
-        // a near root cut away by a clip volume falls through to the far root.
-        if (!hitPrecedes(cand, best)) return false;
-        if (offer(c, cand, best)) return true;
+        // The far root cannot do better than the near one, so stop once the near one cannot
+        // matter; a near root cut away by a clip volume falls through to the far root.
+        if (!best.mayMatter(cand)) return false;
+        if (best.offer(c, cand, analyticTError(t))) return true;
     }
     return false;
 }
@@ -165,11 +168,11 @@ inline int triangleLanes(const detail::PrimBlock &block, uint32_t layerMask) {
 #endif
 }
 
-/// Tests the primitives of one leaf. For closest hit (AnyHit = false) updates `best` and returns
-/// true if it improved; for any hit returns true on the first accepted hit.
-template <bool AnyHit>
+/// Tests the primitives of one leaf. For closest hit (AnyHit = false) offers the hits to `best`
+/// and returns true if it changed; for any hit returns true on the first accepted hit.
+template <bool AnyHit, class Best>
 inline bool testLeaf(uint32_t leaf, const detail::PrimBlock *blocks, const detail::PrimInfo *info,
-                     const RayContext &c, const detail::WatertightRay4 &wray, Hit &best) {
+                     const RayContext &c, const detail::WatertightRay4 &wray, Best &best) {
     using detail::WideLeaf;
     const uint32_t first = WideLeaf::firstBlock(leaf);
     const uint32_t last = first + WideLeaf::blockCount(leaf);
@@ -180,9 +183,9 @@ inline bool testLeaf(uint32_t leaf, const detail::PrimBlock *blocks, const detai
         if (!lanes) continue;
         // A stale (larger) cap only lets more candidates reach offer(), which orders them
         // exactly; the t of a lane does not depend on the cap.
-        const float tCap = AnyHit ? c.tMax : std::min(c.tMax, best.t);
+        const float tCap = AnyHit ? c.tMax : std::min(c.tMax, best.cap());
         detail::TriangleHit4 th;
-        int hits = detail::watertightIntersect4<!AnyHit>(wray, block, lanes, tCap, th);
+        int hits = detail::watertightIntersect4<!AnyHit, !AnyHit && Best::kUsesTError>(wray, block, lanes, tCap, th);
         while (hits) {
             const int lane = std::countr_zero(unsigned(hits));
             hits &= hits - 1;
@@ -191,9 +194,9 @@ inline bool testLeaf(uint32_t leaf, const detail::PrimBlock *blocks, const detai
                 if (c.acceptsPoint(th.t[lane])) return true;
                 continue;
             }
-            found |= offer(c, triangleCandidate(info[4 * b + lane], th.t[lane], th.b1[lane],
-                                                th.b2[lane]),
-                           best);
+            found |= best.offer(c, triangleCandidate(info[4 * b + lane], th.t[lane], th.b1[lane],
+                                                     th.b2[lane]),
+                                Best::kUsesTError ? th.tError[lane] : 0.f);
         }
     }
     if (WideLeaf::hasSpheres(leaf)) {
@@ -255,21 +258,58 @@ struct Tracer::Private {
     std::vector<PlaneRecord> planes;
     TracerBuildStats stats;
 
+    /// Bit i set: layer i holds a triangle, sphere or plane. A query reaching one of them only
+    /// runs NearestHit, the plain total order: single-layer scenes pay nothing for layer priority.
+    uint32_t layers = 0;
+    /// Scene::layerContact in scene units (0 = off).
+    float contactDistance = 0.f;
+
     Private(const Scene &s, const TracerSettings &st) : scene(s), settings(st) {}
 
-    template <bool AnyHit>
-    bool traverse(const RayContext &c, Hit &best) const {
+    template <bool AnyHit, class Best>
+    bool traverse(const RayContext &c, Best &best) const {
 #if MVCL_HAVE_AVX2_TRAVERSAL
         if (useAvx2) return avx2::traverse<AnyHit>(wide, c, best);
 #endif
         return sse::traverse<AnyHit>(wide, c, best);
     }
-    template <bool AnyHit>
-    bool testPlanes(const RayContext &c, Hit &best) const;
+    template <bool AnyHit, class Best>
+    bool testPlanes(const RayContext &c, Best &best) const;
+    /// Whether the query can reach two or more layers (then layer priority applies).
+    bool isLayered(const RayQuery &query) const {
+        const uint32_t live = layers & query.layerMask;
+        return (live & (live - 1)) != 0;
+    }
+    /// The closest-hit state for a layered query on `ray`.
+    detail::LayerPriorityHit layerPriority(const Ray &ray) const {
+        return detail::LayerPriorityHit(contactDistance > 0.f ? contactDistance / lengthUnfused(ray.direction) : 0.f);
+    }
+    template <class Best>
+    bool closestHit(const RayContext &c, Best &best, Hit &hit) const {
+        bool found = traverse<false>(c, best);
+        found |= testPlanes<false>(c, best);
+        return found && best.resolve(hit);
+    }
+    template <class Best>
+    bool closestHitBruteForce(const RayContext &c, Best &best, Hit &hit) const;
+
+    enum class Oracle { Traversal, BruteForce };
+    /// One query (valid) with layer priority where it can reach two layers.
+    bool closestHitInRange(const Ray &ray, const RayQuery &query, Hit &hit, Oracle oracle) const;
+    bool anyHitInRange(const Ray &ray, const RayQuery &query) const;
+    /// With a contact tolerance: whether an inner-layer hit lies within the contact distance of
+    /// a surface of an outer layer the query can reach (probed along the hit's normal). Touching
+    /// layers triangulated differently poke through each other by up to their facets' sagitta,
+    /// also where a ray never meets the outer layer (its silhouette) or leaves it (shadow and
+    /// reflection rays spawned from it); such an inner hit is skipped.
+    bool touchesOuterLayer(const Tracer &tracer, const Ray &ray, const Hit &hit, const RayQuery &query) const;
+    static constexpr int kMaxContactSkips = 16;
+    bool closestHitWithContact(const Tracer &tracer, const Ray &ray, const RayQuery &query, Hit &hit,
+                               Oracle oracle) const;
 };
 
-template <bool AnyHit>
-bool Tracer::Private::testPlanes(const RayContext &c, Hit &best) const {
+template <bool AnyHit, class Best>
+bool Tracer::Private::testPlanes(const RayContext &c, Best &best) const {
     bool found = false;
     for (const PlaneRecord &pl : planes) {
         if (!((c.layerMask >> pl.layer) & 1u)) continue;
@@ -280,7 +320,7 @@ bool Tracer::Private::testPlanes(const RayContext &c, Hit &best) const {
             if (c.acceptsPoint(t)) return true;
             continue;
         }
-        found |= offer(c, cand, best);
+        found |= best.offer(c, cand, analyticTError(t));
     }
     return found;
 }
@@ -363,6 +403,11 @@ Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
             PlaneRecord{pl.normal / len, pl.offset / len, uint32_t(p), clampLayer(pl.layer)});
     }
     d->stats.planes = d->planes.size();
+    for (const Chunk &ch : chunks)
+        if (ch.valid) d->layers |= 1u << clampLayer(scene.meshes[ch.mesh].layer);
+    for (const uint32_t s : validSpheres) d->layers |= 1u << clampLayer(scene.spheres[s].layer);
+    for (const PlaneRecord &pl : d->planes) d->layers |= 1u << pl.layer;
+    if (scene.layerContact.isEnabled()) d->contactDistance = scene.layerContact.sceneUnits(scene.bounds());
 
     input.maxLeafSize = settings.maxLeafSize;
     {
@@ -382,30 +427,102 @@ Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
 
 Tracer::~Tracer() = default;
 
+bool Tracer::Private::closestHitInRange(const Ray &ray, const RayQuery &query, Hit &hit, Oracle oracle) const {
+    const RayContext c(ray, query);
+    if (isLayered(query)) {
+        detail::LayerPriorityHit best = layerPriority(ray);
+        return oracle == Oracle::BruteForce ? closestHitBruteForce(c, best, hit) : closestHit(c, best, hit);
+    }
+    detail::NearestHit best;
+    return oracle == Oracle::BruteForce ? closestHitBruteForce(c, best, hit) : closestHit(c, best, hit);
+}
+
+bool Tracer::Private::anyHitInRange(const Ray &ray, const RayQuery &query) const {
+    const RayContext c(ray, query);
+    // Any hit ends the query whichever layer it is on: layer priority never changes occlusion.
+    detail::NearestHit unused;
+    return testPlanes<true>(c, unused) || traverse<true>(c, unused);
+}
+
+bool Tracer::Private::touchesOuterLayer(const Tracer &tracer, const Ray &ray, const Hit &hit,
+                                        const RayQuery &query) const {
+    const uint32_t outer = layers & query.layerMask & (layerBit(hit.layer) - 1u);
+    if (!outer) return false;
+    const SurfaceInteraction si = tracer.interaction(ray, hit);
+    // The segment [p − d·n, p + d·n] through the hit point along its normal, as a ray of its own
+    // (the watertight test only reports t > 0). The query's clip volumes apply: a cut-away outer
+    // layer is no contact.
+    RayQuery probe = query;
+    probe.tMin = 0.f;
+    probe.tMax = 2.f * contactDistance;
+    probe.layerMask = outer;
+    const glm::vec3 &n = si.geometricNormal;
+    const glm::vec3 back(mulUnfused(contactDistance, n.x), mulUnfused(contactDistance, n.y),
+                         mulUnfused(contactDistance, n.z));
+    const Ray segment{si.position - back, n};
+    return detail::isValidQuery(segment, probe) && anyHitInRange(segment, probe);
+}
+
+bool Tracer::Private::closestHitWithContact(const Tracer &tracer, const Ray &ray, const RayQuery &query, Hit &hit,
+                                            Oracle oracle) const {
+    if (!(contactDistance > 0.f) || !isLayered(query)) return closestHitInRange(ray, query, hit, oracle);
+    const int outermost = std::countr_zero(layers & query.layerMask);
+    RayQuery rest = query;
+    // Each round skips one inner-layer hit that touches an outer layer; a handful covers any
+    // real stack of touching layers, and the bound keeps a pathological one finite.
+    for (int round = 0; round < kMaxContactSkips; ++round) {
+        if (!closestHitInRange(ray, rest, hit, oracle)) return false;
+        if (hit.layer == outermost || !touchesOuterLayer(tracer, ray, hit, query)) return true;
+        if (!(hit.t < rest.tMax)) return false;
+        rest.tMin = nextFloatUp(hit.t);
+    }
+    return true;
+}
+
 bool Tracer::closestHit(const Ray &ray, const RayQuery &query, Hit &hit) const {
     if (!detail::isValidQuery(ray, query)) return false;
-    const RayContext c(ray, query);
-    Hit best;
-    bool found = d->traverse<false>(c, best);
-    found |= d->testPlanes<false>(c, best);
-    if (found) hit = best;
-    return found;
+    if (!d->isLayered(query)) {
+        // One layer: the plain nearest hit, the code and the cost of before layer priority.
+        const RayContext c(ray, query);
+        detail::NearestHit best;
+        return d->closestHit(c, best, hit);
+    }
+    if (!(d->contactDistance > 0.f)) {
+        const RayContext c(ray, query);
+        detail::LayerPriorityHit best(0.f);
+        return d->closestHit(c, best, hit);
+    }
+    return d->closestHitWithContact(*this, ray, query, hit, Private::Oracle::Traversal);
 }
 
 bool Tracer::anyHit(const Ray &ray, const RayQuery &query) const {
     if (!detail::isValidQuery(ray, query)) return false;
-    const RayContext c(ray, query);
+    if (!(d->contactDistance > 0.f) || !d->isLayered(query)) {
+        const RayContext c(ray, query);
+        detail::NearestHit unused;
+        return d->testPlanes<true>(c, unused) || d->traverse<true>(c, unused);
+    }
+    // With a contact tolerance an inner layer's surface within the tolerance of an outer layer's
+    // does not occlude (the facets of differently triangulated touching layers poke through each
+    // other): the outermost layer occludes as always, the others only as a closest hit would
+    // show them.
+    RayQuery outermost = query;
+    outermost.layerMask = layerBit(std::countr_zero(d->layers & query.layerMask));
+    if (d->anyHitInRange(ray, outermost)) return true;
     Hit unused;
-    return d->testPlanes<true>(c, unused) || d->traverse<true>(c, unused);
+    return d->closestHitWithContact(*this, ray, query, unused, Private::Oracle::Traversal);
 }
 
 bool Tracer::closestHitBruteForce(const Ray &ray, const RayQuery &query, Hit &hit) const {
     if (!detail::isValidQuery(ray, query)) return false;
-    const RayContext c(ray, query);
-    Hit best;
+    return d->closestHitWithContact(*this, ray, query, hit, Private::Oracle::BruteForce);
+}
+
+template <class Best>
+bool Tracer::Private::closestHitBruteForce(const RayContext &c, Best &best, Hit &hit) const {
+    const Ray &ray = c.ray;
     bool found = false;
     // Every lane through the scalar kernel: this is the oracle the 4-wide triangle kernel is tested against.
-    const detail::WideBvh &wide = d->wide;
     const WatertightRay wray(ray);
     for (std::size_t b = 0; b < wide.blockCount; ++b) {
         const detail::PrimBlock &block = wide.blocks[b];
@@ -419,15 +536,14 @@ bool Tracer::closestHitBruteForce(const Ray &ray, const RayQuery &query, Hit &hi
             }
             TriangleHit th;
             if (!detail::watertightIntersect(wray, block.vertex(lane, 0), block.vertex(lane, 1),
-                                             block.vertex(lane, 2), std::min(c.tMax, best.t), th))
+                                             block.vertex(lane, 2), std::min(c.tMax, best.cap()), th))
                 continue;
             if (!c.acceptsT(th.t)) continue;
-            found |= offer(c, triangleCandidate(info, th.t, th.b1, th.b2), best);
+            found |= best.offer(c, triangleCandidate(info, th.t, th.b1, th.b2), th.tError);
         }
     }
-    found |= d->testPlanes<false>(c, best);
-    if (found) hit = best;
-    return found;
+    found |= testPlanes<false>(c, best);
+    return found && best.resolve(hit);
 }
 
 SurfaceInteraction Tracer::interaction(const Ray &ray, const Hit &hit) const {

@@ -26,6 +26,20 @@ inline float max3(float a, float b, float c) {
     return m > c ? m : c;
 }
 
+/// The bound layer priority compares hits with (TriangleHit::tError), from the same error analysis
+/// as δt below but for comparing two hits rather than proving t > 0. t is the mean of the z_i
+/// weighted by e_i / det, and det is summed from the same rounded e_i, so an error εi of the edge
+/// function ei moves t by Σ εi·(zi − t) / det: the edge functions' error δE weighs with the
+/// triangle's depth spread Σ|zi − t|, not with its distance maxZt as in δt (which for a facet seen
+/// from a few sizes away is a thousand ulps of t). The other terms: the zi (γ₃·maxZt), the
+/// numerator's products and sums (γ₃·maxZt, as Σ|ei·zi| ≤ maxZt·|det| for a hit), det's sum and
+/// the division (γ₃·t); all doubled for the second-order terms and the bound's own rounding.
+/// The 4-wide kernel computes exactly these operations in this order.
+inline float orderingError(float t, float maxZt, float deltaE, float spread, float absInvDet) {
+    return 2.f * ((mulUnfused(gamma(3), 2.f * maxZt) + mulUnfused(gamma(3), std::fabs(t))) +
+                  mulUnfused(mulUnfused(deltaE, spread), absInvDet));
+}
+
 inline bool watertightIntersect(const WatertightRay &r, const glm::vec3 &p0, const glm::vec3 &p1,
                                 const glm::vec3 &p2, float tMax, TriangleHit &hit) {
     // Translate to the ray origin, permute so the ray's dominant axis is z, shear so the ray
@@ -92,6 +106,8 @@ inline bool watertightIntersect(const WatertightRay &r, const glm::vec3 &p0, con
     if (t <= deltaT) return false;
 
     hit.t = t;
+    hit.tError = orderingError(t, maxZt, deltaE, std::fabs(z0 - t) + std::fabs(z1 - t) + std::fabs(z2 - t),
+                               std::fabs(invDet));
     hit.b0 = e0 * invDet;
     hit.b1 = e1 * invDet;
     hit.b2 = e2 * invDet;

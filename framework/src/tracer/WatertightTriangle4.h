@@ -28,6 +28,7 @@ inline __m128 mulUnfused4(__m128 a, __m128 b) { return unfused(_mm_mul_ps(a, b))
 
 struct TriangleHit4 {
     alignas(16) float t[4];
+    alignas(16) float tError[4]; ///< δt of each lane (TriangleHit::tError)
     alignas(16) float b0[4];
     alignas(16) float b1[4];
     alignas(16) float b2[4];
@@ -51,9 +52,10 @@ struct WatertightRay4 {
 
 /// Tests the lanes set in `lanes` (bit i = lane i) against the ray; returns the bits of the lanes
 /// hit with their results in `hit`. tMax plays the same role as in watertightIntersect().
-/// Barycentrics = false leaves hit.b0..b2 of the vector lanes unwritten: any-hit queries only
-/// need t, which is the same arithmetic either way.
-template <bool Barycentrics = true>
+/// Barycentrics = false leaves hit.b0..b2 of the vector lanes unwritten: any-hit queries only need
+/// t, which is the same arithmetic either way. OrderingError = false leaves hit.tError of the
+/// vector lanes unwritten: only layer priority reads it.
+template <bool Barycentrics = true, bool OrderingError = false>
 inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, int lanes, float tMax,
                                 TriangleHit4 &hit) {
     const WatertightRay &r = r4.ray;
@@ -145,6 +147,18 @@ inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, in
             hits = candidates & _mm_movemask_ps(accept);
             if (hits) {
                 _mm_store_ps(hit.t, t);
+                if (OrderingError) {
+                    // orderingError() lane by lane.
+                    const __m128 spread = _mm_add_ps(
+                        _mm_add_ps(_mm_and_ps(_mm_sub_ps(z0, t), absMask), _mm_and_ps(_mm_sub_ps(z1, t), absMask)),
+                        _mm_and_ps(_mm_sub_ps(z2, t), absMask));
+                    const __m128 g3 = _mm_set1_ps(gamma(3));
+                    const __m128 terms = _mm_add_ps(
+                        _mm_add_ps(mulUnfused4(g3, _mm_mul_ps(_mm_set1_ps(2.f), maxZt)),
+                                   mulUnfused4(g3, _mm_and_ps(t, absMask))),
+                        mulUnfused4(mulUnfused4(deltaE, spread), _mm_and_ps(invDet, absMask)));
+                    _mm_store_ps(hit.tError, _mm_mul_ps(_mm_set1_ps(2.f), terms));
+                }
                 if (Barycentrics) {
                     _mm_store_ps(hit.b0, _mm_mul_ps(e0, invDet));
                     _mm_store_ps(hit.b1, _mm_mul_ps(e1, invDet));
@@ -166,6 +180,7 @@ inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, in
                                  h))
             continue;
         hit.t[lane] = h.t;
+        hit.tError[lane] = h.tError;
         hit.b0[lane] = h.b0;
         hit.b1[lane] = h.b1;
         hit.b2[lane] = h.b2;

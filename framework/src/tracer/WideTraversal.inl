@@ -132,7 +132,8 @@ inline int intersectNode(const WideNode &n, const NodeRay &r, float tHigh, float
 /// Any-hit traversal. Any hit ends the query and tHigh never shrinks, so the children are not
 /// ordered and the stack holds bare references: every pushed child already passed
 /// tNear <= tHigh, so popping needs no distance test either.
-inline bool occluded(const detail::WideBvh &wide, const RayContext &c, float tHigh, Hit &unused) {
+inline bool occluded(const detail::WideBvh &wide, const RayContext &c, float tHigh,
+                     detail::NearestHit &unused) {
     const WideNode *nodes = wide.nodes.get();
     const detail::PrimBlock *blocks = wide.blocks.get();
     const detail::PrimInfo *info = wide.info.get();
@@ -210,11 +211,11 @@ inline bool occluded(const detail::WideBvh &wide, const RayContext &c, float tHi
     }
 }
 
-/// Closest hit (AnyHit = false: updates `best`, returns whether anything was found) or any hit
-/// (returns true on the first accepted hit; after the root box, handed to occluded()) over the
-/// wide BVH.
-template <bool AnyHit>
-bool traverse(const detail::WideBvh &wide, const RayContext &c, Hit &best) {
+/// Closest hit (AnyHit = false: offers candidates to `best`, a NearestHit or a LayerPriorityHit,
+/// and returns whether it changed) or any hit (returns true on the first accepted hit; after the
+/// root box, handed to occluded()) over the wide BVH.
+template <bool AnyHit, class Best>
+bool traverse(const detail::WideBvh &wide, const RayContext &c, Best &best) {
     if (wide.blockCount == 0) return false;
     const WideNode *nodes = wide.nodes.get();
     const detail::PrimBlock *blocks = wide.blocks.get();
@@ -223,7 +224,9 @@ bool traverse(const detail::WideBvh &wide, const RayContext &c, Hit &best) {
     float tEntry;
     if (!(wide.rootMask & c.layerMask) || !intersectBox(wide.rootBounds, c, tHigh, tEntry))
         return false;
-    if (AnyHit) return occluded(wide, c, tHigh, best);
+    if constexpr (AnyHit) {
+        return occluded(wide, c, tHigh, best);
+    } else {
     // Only now: many rays miss the scene bounds, and the shear costs three divisions.
     const WatertightRay wray(c.ray);
     const detail::WatertightRay4 wray4(wray);
@@ -257,7 +260,7 @@ bool traverse(const detail::WideBvh &wide, const RayContext &c, Hit &best) {
             if (testLeaf<AnyHit>(cur, blocks, info, c, wray4, best)) {
                 if (AnyHit) return true;
                 found = true;
-                tHigh = std::min(c.tMax, best.t) * detail::kTraversalSlackUp;
+                tHigh = std::min(c.tMax, best.cap()) * detail::kTraversalSlackUp;
             }
         } else if (sp > 0 && sp <= kStackSize - 2 * kWidth && !WideLeaf::isLeaf(stack[sp - 1].ref) &&
                    stack[sp - 1].t <= tHigh) {
@@ -314,6 +317,7 @@ bool traverse(const detail::WideBvh &wide, const RayContext &c, Hit &best) {
                 break;
             }
         }
+    }
     }
 }
 

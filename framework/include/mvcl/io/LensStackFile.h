@@ -20,6 +20,7 @@
 /// file and the JSON path; property values are read with the property's own declaration.
 
 #include <mvcl/lens/LensStack.h>
+#include <mvcl/model/LayerContact.h>
 #include <mvcl/model/LayerRules.h>
 #include <mvcl/model/LayerTable.h>
 
@@ -53,6 +54,9 @@ struct LensStackDescription {
     LayerRules layerRules;
     /// Layers primary rays may hit outside every lens (the base policy's primary layer mask).
     uint32_t visibleLayers = kAllLayers;
+    /// The scene's contact tolerance for touching layers ("layerContact": {"relative": f} or
+    /// {"sceneUnits": d}); off when the file has none.
+    LayerContact layerContact;
     LensStack lenses; ///< every lens committed
 };
 

@@ -2,8 +2,9 @@
 /// \file SceneLoader.h
 /// One entry point for every scene source: "builtin:<name>", .gltf or .glb. Applies layer rules,
 /// infers the layers nobody assigned, and gives model files without lights a default light rig
-/// (unless told not to).
+/// (unless told not to), and sets the scene's layer contact tolerance.
 
+#include <mvcl/model/LayerContact.h>
 #include <mvcl/model/LayerRules.h>
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/LayerInference.h>
@@ -23,6 +24,8 @@ struct SceneLoadOptions {
     LayerRules layerRules;
     LayerInferenceSettings inference;
     DefaultLights defaultLights = DefaultLights::WhenTheFileHasNone;
+    /// Becomes Scene::layerContact when enabled (model files carry none of their own).
+    LayerContact layerContact;
 };
 
 /// Throws mvcl::Error naming the source and the problem.

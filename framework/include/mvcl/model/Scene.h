@@ -6,6 +6,7 @@
 
 #include <mvcl/core/Bounds3.h>
 #include <mvcl/model/CameraDesc.h>
+#include <mvcl/model/LayerContact.h>
 #include <mvcl/model/LayerTable.h>
 #include <mvcl/model/Light.h>
 #include <mvcl/model/Material.h>
@@ -43,6 +44,9 @@ struct Scene {
     glm::vec3 ambientLight{0.1f};
     glm::vec3 background{0.05f, 0.06f, 0.08f};
     LayerTable layers;
+    /// Within this distance an outer layer's hit beats a nearer inner layer's (off by default;
+    /// read by the Tracer when it is built).
+    LayerContact layerContact;
     std::vector<CameraDesc> cameras;
     /// World-space position of the scene-space origin (double, so far-away models stay exact).
     glm::dvec3 worldOrigin{0.0};

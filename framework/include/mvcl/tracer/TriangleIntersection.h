@@ -12,6 +12,11 @@ namespace mvcl {
 struct TriangleHit {
     float t;
     float b0, b1, b2; ///< barycentrics of p0, p1, p2
+    /// Bound on |t − the exact t of the float ray and vertices| from the test's error analysis,
+    /// made for comparing two hits (the edge functions' error weighted by the triangle's depth
+    /// spread; pbrt-v4 §6.8.4's δt, which the test uses to prove t > 0, weighs it with the
+    /// distance and is far looser). The tracer's layer priority compares hits with it.
+    float tError;
 };
 
 /// Per-ray constants of the watertight test (permutation and shear), computed once per ray.
