@@ -1,5 +1,5 @@
 #pragma once
-// The lens conformance checks (BRIEF §3, issue "Lenses" §6). Each check takes a factory for
+// The lens conformance checks (the composition rules of docs/architecture.md). Each check takes a factory for
 // the lens under test and returns an AssertionResult, so the same checks run over every
 // registered lens type (LensConformanceTest) and over deliberately broken test lenses that
 // prove every check can fail.

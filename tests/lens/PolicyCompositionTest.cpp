@@ -1,4 +1,4 @@
-// The composition rules of BRIEF §3, one rule per test, on random data.
+// The lens composition rules (docs/architecture.md), one rule per test, on random data.
 #include <mvcl/lens/PolicyComposition.h>
 
 #include <mvcl/core/Error.h>
