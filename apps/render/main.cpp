@@ -64,13 +64,16 @@ void printInfo(const Scene &scene) {
             if (m.layer == layer.id) ++meshes, triangles += m.indices.size();
         std::printf("layer %-4d %-20s %zu meshes, %zu triangles\n", layer.id, layer.name.c_str(), meshes, triangles);
     }
+    const auto closureName = [](MeshClosure closure) {
+        return closure == MeshClosure::Open ? "open" : closure == MeshClosure::Outward ? "closed" : "closed, inward";
+    };
     for (const TriangleMesh &m : scene.meshes)
         if (m.layerSource == LayerSource::Inferred)
-            std::printf("  mesh %-40s layer %d (inferred, confidence %.2f), %zu triangles\n", m.name.c_str(), m.layer,
-                        double(m.layerConfidence), m.indices.size());
+            std::printf("  mesh %-40s layer %d (inferred, confidence %.2f), %zu triangles, %s\n", m.name.c_str(),
+                        m.layer, double(m.layerConfidence), m.indices.size(), closureName(m.closure));
         else
-            std::printf("  mesh %-40s layer %d (%s), %zu triangles\n", m.name.c_str(), m.layer,
-                        layerSourceName(m.layerSource), m.indices.size());
+            std::printf("  mesh %-40s layer %d (%s), %zu triangles, %s\n", m.name.c_str(), m.layer,
+                        layerSourceName(m.layerSource), m.indices.size(), closureName(m.closure));
     if (scene.report.degenerateTrianglesDropped)
         std::printf("dropped    %zu degenerate triangles\n", scene.report.degenerateTrianglesDropped);
     if (scene.report.nonUnitNormalsFixed)

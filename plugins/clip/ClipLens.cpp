@@ -33,6 +33,8 @@ const LensInfo kClipLensInfo{
                                  "a point on the half-space's plane"),
             PropertyDecl::vector3("planeNormal", {1.0, 0.0, 0.0}, PropertySpace::World, "",
                                   "half-space normal: the cut side is where it points"),
+            PropertyDecl::choice("caps", "solid", {"none", "solid", "hatched"},
+                                 "where the cut opens a closed mesh: its hollow inside, or a cap in its colour"),
         },
     .defaultRayTypes = rayTypeBit(RayType::Primary),
     .algebra = {.commutes = true, .idempotent = true},
@@ -57,12 +59,12 @@ protected:
         const glm::vec3 normal(properties.vector3("planeNormal") * normalScale);
         const double largestSide = inScene ? glm::max(extent.x, glm::max(extent.y, extent.z)) : 1.0;
         const float radius = float(properties.real("sphereRadius") * largestSide);
-        const ClipVolume::Keep keep =
-            properties.choice("mode") == "keep" ? ClipVolume::Keep::Inside : ClipVolume::Keep::Outside;
+        const auto keep = ClipVolume::Keep(properties.choiceIndex("mode")); // cut, keep: enum order
         const std::string &volumeName = properties.choice("volume");
-        const ClipVolume volume = volumeName == "sphere"  ? ClipVolume::sphere(center, radius, keep)
-                                  : volumeName == "box" ? ClipVolume::box(point(box.min), point(box.max), keep)
-                                                   : ClipVolume::halfSpace(normal, glm::dot(normal, onPlane), keep);
+        ClipVolume volume = volumeName == "sphere"  ? ClipVolume::sphere(center, radius, keep)
+                            : volumeName == "box" ? ClipVolume::box(point(box.min), point(box.max), keep)
+                                                  : ClipVolume::halfSpace(normal, glm::dot(normal, onPlane), keep);
+        volume.setCapStyle(ClipVolume::CapStyle(properties.choiceIndex("caps"))); // declared in enum order
         LensContribution contribution;
         for (RayQuery &query : contribution.visibility) query.addClip(volume); // "rays" chooses
         return contribution;

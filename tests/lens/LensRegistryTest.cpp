@@ -25,7 +25,8 @@ namespace fs = std::filesystem;
 
 const fs::path kTestPluginDir = MVCL_TEST_PLUGIN_DIR;
 const fs::path kPluginBuildDir = MVCL_PLUGIN_BUILD_DIR;
-const std::vector<std::string> kInTreeLenses = {"achromatic", "clip", "layer", "magnifier", "peel", "shadow", "xray"};
+const std::vector<std::string> kInTreeLenses = {"achromatic", "clip",  "edges", "falsecolor", "layer",
+                                                 "magnifier",  "peel",  "section", "shadow",   "xray"};
 
 fs::path fixture(const std::string &name) { return kTestPluginDir / ("mvcl-lens-fixture-" + name + ".so"); }
 

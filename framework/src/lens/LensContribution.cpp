@@ -34,11 +34,13 @@ void ShadingOverride::applyTo(ShadingPolicy &shading) const {
     if (layerOpacity) shading.layerOpacity = *layerOpacity;
     if (edgeOpacity) shading.edgeOpacity = *edgeOpacity;
     if (peelSurfaces) shading.peelSurfaces = *peelSurfaces;
+    if (falseColor) shading.falseColor = *falseColor;
+    if (edges) shading.edges = *edges;
 }
 
 bool ShadingOverride::isEmpty() const {
     return !shadows && !shadowStrength && !shadowTint && !reflections && !refractions && !maxDepth &&
-           !layerOpacity && !edgeOpacity && !peelSurfaces;
+           !layerOpacity && !edgeOpacity && !peelSurfaces && !falseColor && !edges;
 }
 
 LensContribution LensContribution::restrictedTo(uint8_t rayTypes) const {
@@ -50,6 +52,8 @@ LensContribution LensContribution::restrictedTo(uint8_t rayTypes) const {
         restricted.shading.layerOpacity.reset(); // the opacity stage acts on primary hits
         restricted.shading.edgeOpacity.reset();
         restricted.shading.peelSurfaces.reset();
+        restricted.shading.falseColor.reset();
+        restricted.shading.edges.reset();
     }
     if (!includes(rayTypes, RayType::Shadow)) {
         restricted.shading.shadows.reset();
@@ -97,6 +101,17 @@ void LensContribution::validate() const {
         fail("edge opacity must lie in [0, 1]");
     if (shading.peelSurfaces && !(*shading.peelSurfaces >= 0 && *shading.peelSurfaces < 64))
         fail("peelSurfaces must lie in [0, 63]");
+    if (shading.falseColor && !(std::isfinite(shading.falseColor->depthNear) && std::isfinite(shading.falseColor->depthFar) &&
+                                shading.falseColor->depthNear < shading.falseColor->depthFar))
+        fail("a false colour's depth range must be finite with depthNear < depthFar");
+    if (shading.edges) {
+        const EdgePolicy &edges = *shading.edges;
+        if (!(isFinite(edges.color) && glm::all(glm::greaterThanEqual(edges.color, glm::vec3(0.f)))))
+            fail("edge colour must be finite and ≥ 0");
+        if (!(edges.widthPixels > 0.f && std::isfinite(edges.widthPixels))) fail("edge width must be finite and > 0");
+        if (!(edges.creaseDegrees >= 0.f && edges.creaseDegrees <= 180.f))
+            fail("crease angle must lie in [0, 180] degrees");
+    }
     if (!isFinite(color.matrix) || !isFinite(color.offset)) fail("the colour map is not finite");
 }
 

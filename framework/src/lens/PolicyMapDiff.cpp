@@ -33,7 +33,7 @@ uint64_t renderHash(const PixelPolicy &p) {
         add(q.layerMask);
         add(uint64_t(q.clipCount()));
         for (const ClipVolume &clip : q.clips()) {
-            add(uint64_t(clip.shape()) << 8 | uint64_t(clip.keep()));
+            add(uint64_t(clip.capStyle()) << 16 | uint64_t(clip.shape()) << 8 | uint64_t(clip.keep()));
             addVec3(clip.boxMin()); // also the centre or normal
             addVec3(clip.boxMax());
             addFloat(clip.radius()); // also the offset
@@ -47,6 +47,13 @@ uint64_t renderHash(const PixelPolicy &p) {
     for (float opacity : s.layerOpacity) addFloat(opacity);
     addFloat(s.edgeOpacity);
     add(uint32_t(s.peelSurfaces));
+    add(uint64_t(s.falseColor.mode));
+    addFloat(s.falseColor.depthNear);
+    addFloat(s.falseColor.depthFar);
+    add(uint64_t(s.edges.mode));
+    addVec3(s.edges.color);
+    addFloat(s.edges.widthPixels);
+    addFloat(s.edges.creaseDegrees);
     addMat3(p.ray.color.matrix);
     addVec3(p.ray.color.offset);
     addMat3(p.sampleFromScreen);

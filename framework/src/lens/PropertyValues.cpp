@@ -2,6 +2,8 @@
 
 #include <mvcl/core/Error.h>
 
+#include <algorithm>
+
 namespace mvcl {
 
 PropertyValues::PropertyValues(const PropertyTable &table, const std::vector<PropertyValue> &values)
@@ -50,6 +52,12 @@ glm::vec3 PropertyValues::color(std::string_view name) const {
 
 const std::string &PropertyValues::choice(std::string_view name) const {
     return typedRead(name, [&]() -> const std::string & { return value(name).toChoice(); });
+}
+
+int PropertyValues::choiceIndex(std::string_view name) const {
+    const std::string &chosen = choice(name);
+    const std::vector<std::string> &choices = declaration(name).choices;
+    return int(std::find(choices.begin(), choices.end(), chosen) - choices.begin());
 }
 
 uint32_t PropertyValues::layers(std::string_view name) const {

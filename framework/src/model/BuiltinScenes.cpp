@@ -1,6 +1,7 @@
 #include <mvcl/model/BuiltinScenes.h>
 
 #include <mvcl/core/Error.h>
+#include <mvcl/model/MeshClosure.h>
 
 #include <glm/geometric.hpp>
 
@@ -118,8 +119,12 @@ Scene makeOnion() {
 std::vector<std::string> builtinSceneNames() { return {"cube-in-cube", "onion"}; }
 
 Scene makeBuiltinScene(std::string_view name) {
-    if (name == "cube-in-cube") return makeCubeInCube();
-    if (name == "onion") return makeOnion();
+    const auto withClosure = [](Scene scene) {
+        recordMeshClosure(scene);
+        return scene;
+    };
+    if (name == "cube-in-cube") return withClosure(makeCubeInCube());
+    if (name == "onion") return withClosure(makeOnion());
     std::string known;
     for (const std::string &n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
     throw Error("builtin:" + std::string(name), "no such built-in scene (known: " + known + ")");

@@ -2,6 +2,8 @@
 
 #include "GltfTangents_p.h"
 
+#include <mvcl/model/MeshClosure.h>
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -492,6 +494,7 @@ void GltfSceneBuilder::finish() {
         m_scene.meshes.push_back(std::move(pm.mesh));
     }
     m_pending.clear();
+    recordMeshClosure(m_scene);
     for (const PendingCamera &pc : m_cameras) {
         CameraDesc c = pc.desc;
         c.eye = toVec3(pc.eye - origin);

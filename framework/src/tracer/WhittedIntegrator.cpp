@@ -1,6 +1,8 @@
 #include <mvcl/tracer/WhittedIntegrator.h>
 
+#include "ClipCap.h"
 #include "MaterialEvaluator.h"
+#include "SurfaceOverlays.h"
 
 #include <mvcl/core/FloatBits.h>
 #include <mvcl/model/Scene.h>
@@ -11,6 +13,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 namespace mvcl {
 
@@ -37,6 +41,21 @@ float schlickFresnel(float cosTheta, float ior) {
 
 /// The layer the tracer files a geometry under (it clamps out-of-range layers the same way).
 int layerOfGeometry(int layer) { return std::clamp(layer, 0, kMaxLayers - 1); }
+
+/// True if the ray reached `hit` from inside a closed solid: it meets a sphere's or a closed
+/// mesh's face from the side the solid's material is on.
+bool endsInsideClosedSolid(const Scene &scene, const Hit &hit, const SurfaceInteraction &si, const glm::vec3 &d) {
+    const bool leavingFace = glm::dot(si.geometricNormal, d) > 0.f; // the face points away from the ray
+    switch (hit.kind) {
+    case GeometryKind::Sphere: return leavingFace;
+    case GeometryKind::Plane: return false;
+    case GeometryKind::Triangle: {
+        const MeshClosure closure = scene.meshes[hit.geometry].closure;
+        return closure != MeshClosure::Open && leavingFace == (closure == MeshClosure::Outward);
+    }
+    }
+    return false;
+}
 
 void countRay(RayType type, RayCounters &counters) {
     switch (type) {
@@ -72,6 +91,8 @@ WhittedIntegrator::WhittedIntegrator(const Tracer &tracer)
     for (const TriangleMesh &mesh : scene.meshes) addGeometry(mesh.layer, mesh.material);
     for (const Sphere &sphere : scene.spheres) addGeometry(sphere.layer, sphere.material);
     for (const Plane &plane : scene.planes) addGeometry(plane.layer, plane.material);
+    const Bounds3f bounds = scene.bounds();
+    if (!bounds.isEmpty()) m_hatchPeriod = glm::length(bounds.extent()) / 160.f;
 }
 
 WhittedIntegrator::~WhittedIntegrator() = default;
@@ -119,9 +140,9 @@ IntegratorPlan WhittedIntegrator::plan(const RayPolicy &policy, StageSelection s
     return plan;
 }
 
-float WhittedIntegrator::lightPassing(const Ray &shadowRay, float lightDistance,
-                                      const RayPolicy &policy, ShadowStage stage, RayCounters &counters) const {
-    RayQuery query = policy.query(RayType::Shadow);
+float WhittedIntegrator::lightPassing(const Ray &shadowRay, float lightDistance, const RayQuery &shadowQuery,
+                                      ShadowStage stage, RayCounters &counters) const {
+    RayQuery query = shadowQuery;
     query.tMax = std::min(query.tMax, lightDistance);
     countRay(RayType::Shadow, counters);
     // Opaque occluders need only "is anything in the way" (any-hit, the cheap query).
@@ -176,17 +197,46 @@ bool WhittedIntegrator::closestVisibleHit(const Ray &ray, const RayQuery &query,
 }
 
 glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, const RayPolicy &policy,
-                                   const IntegratorPlan &plan, RayCounters &counters) const {
+                                   const IntegratorPlan &plan, RayCounters &counters, float travelled) const {
     const Scene &scene = m_tracer.scene();
+    const ShadingPolicy &shading = policy.shading;
+    const RayQuery &query = policy.query(type);
+    const bool isPrimary = type == RayType::Primary;
     countRay(type, counters);
     Hit hit;
-    if (!closestVisibleHit(ray, policy.query(type), hit)) return scene.background;
+    if (!closestVisibleHit(ray, query, hit)) {
+        // An outline is centred on the silhouette, so the background next to it gets half.
+        if (!isPrimary || shading.edges.mode != EdgeLineMode::Outlines) return scene.background;
+        return glm::mix(scene.background, shading.edges.color,
+                        outlineCoverage(ray, query, nullptr, shading.edges, counters));
+    }
 
-    const SurfaceInteraction si = m_tracer.interaction(ray, hit);
+    SurfaceInteraction si = m_tracer.interaction(ray, hit);
     const glm::vec3 d = glm::normalize(ray.direction);
+    const float rayLength = glm::length(ray.direction);
+    // A primary ray that ends on the inside of a closed solid went through a cut: a capped clip
+    // volume shows its cut surface there, as a solid face of the mesh's material.
+    std::optional<detail::ClipCap> cap;
+    if (isPrimary && detail::hasCappedClip(query) && endsInsideClosedSolid(scene, hit, si, d))
+        cap = detail::clipCapBefore(ray, query, hit.t);
+    const float shownT = cap ? cap->t : hit.t;
     // The ray cone's width where it meets the surface picks the texture level.
-    const float coneWidth = ray.coneWidth + ray.coneSpread * hit.t * glm::length(ray.direction);
-    const detail::ShadedSurface surface = m_materials->evaluate(hit, si, d, coneWidth);
+    const float coneWidth = ray.coneWidth + ray.coneSpread * shownT * rayLength;
+    detail::ShadedSurface surface = m_materials->evaluate(hit, si, d, coneWidth);
+    if (cap) {
+        si.position = ray.at(cap->t);
+        // ray.at() rounds once per component; a few ulps of the largest term bound the error.
+        si.positionError = 8.f * std::numeric_limits<float>::epsilon() *
+                           (glm::abs(ray.origin) + glm::abs(cap->t * ray.direction));
+        si.geometricNormal = surface.shadingNormal = cap->normal;
+        // A section is matte and opaque: a metal shows its colour rather than a mirror, glass
+        // looks frosted (what it would transmit scatters).
+        PhongTerms &section = surface.phong;
+        const float clear = std::clamp(surface.transparency, 0.f, 1.f);
+        section.diffuse = glm::mix(section.diffuse + section.reflectivity * section.specularColor, glm::vec3(0.8f), clear);
+        section.ambient = section.diffuse;
+        surface.transparency = 0.f;
+    }
     const PhongTerms &m = surface.phong;
 
     // Light the side the ray arrived on; remember whether it is entering the surface.
@@ -195,17 +245,15 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
     glm::vec3 ns = entering ? surface.shadingNormal : -surface.shadingNormal;
     if (glm::dot(ns, ng) < 0.f) ns = ng;
 
-    // Eq. 1: A + Σ I·(P·(L·N) + Ks·S·(N·H)^Ps) / D
-    const ShadingPolicy &shading = policy.shading;
     // Opacity stage: a partly opaque primary hit is blended with what the ray meets when it goes
     // on through the surface (the same constraints, t still counted from the camera).
     // A primary ray's depth counts the surfaces it went through: depth peeling passes the first
-    // peelSurfaces ones at opacity 0.
+    // peelSurfaces ones at opacity 0. A cap is solid: nothing shows through it.
     float alpha = 1.f;
     glm::vec3 behind(0.f);
-    const bool peeled = type == RayType::Primary && depth < std::min(shading.peelSurfaces, kDepthCeiling);
+    const bool peeled = isPrimary && !cap && depth < std::min(shading.peelSurfaces, kDepthCeiling);
     if (peeled ||
-        (type == RayType::Primary && (plan.translucentLayers & layerBit(hit.layer)) != 0 && depth < kDepthCeiling)) {
+        (isPrimary && !cap && (plan.translucentLayers & layerBit(hit.layer)) != 0 && depth < kDepthCeiling)) {
         const float facing = std::min(std::abs(glm::dot(surface.shadingNormal, d)), 1.f);
         const float opacity = std::clamp(shading.layerOpacity[hit.layer], 0.f, 1.f);
         alpha = peeled ? 0.f : opacity + (1.f - opacity) * std::clamp(shading.edgeOpacity, 0.f, 1.f) * (1.f - facing);
@@ -217,12 +265,34 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
         onward.coneWidth = coneWidth;
         onward.coneSpread = ray.coneSpread;
         // depth + 1 bounds the walk through stacked surfaces (the ceiling); it is no bounce.
-        behind = trace(onward, RayType::Primary, depth + 1, onwardPolicy, plan, counters);
+        behind = trace(onward, RayType::Primary, depth + 1, onwardPolicy, plan, counters,
+                       travelled + hit.t * rayLength);
         if (alpha <= 0.f) return behind;
     }
-    const auto withBehind = [&](const glm::vec3 &front) {
+    // Lines go over the surface's colour, which then blends with what lies behind it.
+    const auto shown = [&](const glm::vec3 &surfaceColor) {
+        glm::vec3 front = surfaceColor;
+        if (isPrimary && shading.edges.mode != EdgeLineMode::Off) {
+            float lines = 0.f;
+            if (shading.edges.mode == EdgeLineMode::Outlines)
+                lines = outlineCoverage(ray, query, &hit, shading.edges, counters);
+            else if (!cap && hit.kind == GeometryKind::Triangle)
+                lines = detail::triangleEdgeCoverage(scene.meshes[hit.geometry], hit, coneWidth,
+                                                     shading.edges.widthPixels);
+            front = glm::mix(front, shading.edges.color, lines);
+        }
         return alpha < 1.f ? alpha * front + (1.f - alpha) * behind : front;
     };
+    if (isPrimary && shading.falseColor.mode != FalseColorMode::Off)
+        return shown(detail::falseColorAt(shading.falseColor, hit, ns, travelled + shownT * rayLength,
+                                          std::min(std::abs(glm::dot(ns, d)), 1.f)));
+
+    // A cap is lit as if the cut were real: its shadow rays skip what the primary clips remove.
+    RayQuery shadowQuery = policy.query(RayType::Shadow);
+    if (cap)
+        for (const ClipVolume &clip : query.clips()) shadowQuery.tryAddClip(clip);
+
+    // Eq. 1: A + Σ I·(P·(L·N) + Ks·S·(N·H)^Ps) / D
     glm::vec3 local = m.ambient * scene.ambientLight;
     for (const Light &light : scene.lights) {
         glm::vec3 toLight;
@@ -250,7 +320,7 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
                 ++counters.skippedShadowRays;
             } else {
                 const Ray shadowRay{offsetRayOrigin(si.position, si.positionError, ng, toLight), toLight};
-                passed = lightPassing(shadowRay, distance, policy, plan.shadows, counters);
+                passed = lightPassing(shadowRay, distance, shadowQuery, plan.shadows, counters);
                 if (plan.shadows != plan.forcedShadows) ++counters.skippedTransparentWalks;
             }
             // The blocked share of the light is dimmed by the policy's strength and tint.
@@ -269,11 +339,13 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
     float reflectWeight = reflectivity;
     float refractWeight = shading.refractions ? surface.transparency : 0.f;
     glm::vec3 color = local * (1.f - std::clamp(surface.transparency, 0.f, 1.f)) + surface.emission;
+    if (cap) return shown(cap->style == ClipVolume::CapStyle::Hatched ? detail::hatched(color, si.position, m_hatchPeriod)
+                                                                       : color);
     if ((plan.secondaryRayTypes & rayTypeBit(type)) == 0) {
         ++counters.skippedSecondaryChecks;
-        return withBehind(color);
+        return shown(color);
     }
-    if (depth >= maxDepth || (reflectWeight <= 0.f && refractWeight <= 0.f)) return withBehind(color);
+    if (depth >= maxDepth || (reflectWeight <= 0.f && refractWeight <= 0.f)) return shown(color);
 
     const float cosI = -glm::dot(ns, d);
     glm::vec3 refracted(0.f);
@@ -306,7 +378,7 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
                                         reflectWeight > 0.f ? std::clamp(reflectivity / reflectWeight, 0.f, 1.f) : 0.f);
         color += reflectWeight * tint * trace(reflectRay, RayType::Reflection, depth + 1, policy, plan, counters);
     }
-    return withBehind(color + refractWeight * refracted);
+    return shown(color + refractWeight * refracted);
 }
 
 } // namespace mvcl

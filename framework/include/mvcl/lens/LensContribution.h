@@ -27,6 +27,8 @@ struct ShadingOverride {
     std::optional<std::array<float, kMaxLayers>> layerOpacity;
     std::optional<float> edgeOpacity;
     std::optional<int> peelSurfaces; ///< see ShadingPolicy::peelSurfaces (primary rays)
+    std::optional<FalseColorPolicy> falseColor; ///< see ShadingPolicy::falseColor (primary rays)
+    std::optional<EdgePolicy> edges;            ///< see ShadingPolicy::edges (primary rays)
 
     void applyTo(ShadingPolicy &shading) const;
     bool isEmpty() const;

@@ -23,6 +23,9 @@ public:
     double real(std::string_view name) const;
     glm::vec3 color(std::string_view name) const;
     const std::string &choice(std::string_view name) const;
+    /// Position of the choice among the declared choices (0 = the first): maps a choice onto an
+    /// enum declared in the same order, e.g. ClipVolume::CapStyle(choiceIndex("caps")).
+    int choiceIndex(std::string_view name) const;
     uint32_t layers(std::string_view name) const;
     uint8_t rayTypes(std::string_view name) const;
     /// Spatial values as declared (in their declaration's space); LensContext::scenePoint and

@@ -3,6 +3,8 @@
 /// A triangle mesh as in the paper: a vertex list plus a triangle index list, in scene space
 /// (node transforms already applied, in double, then re-centred on Scene::worldFromScene).
 
+#include <mvcl/model/MeshClosure.h>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -42,6 +44,8 @@ struct TriangleMesh {
     /// peeled, 0..1: 1 = none of its samples enclosed, 0 = at the threshold (or peeled only
     /// because everything left enclosed everything else). 1 for the other sources.
     float layerConfidence = 1.f;
+    /// Whether the mesh bounds a solid (see recordMeshClosure): clip volumes cap closed meshes.
+    MeshClosure closure = MeshClosure::Open;
     int sourceNode = -1; ///< glTF node index, -1 for built-in geometry
     int sourceMesh = -1; ///< glTF mesh index, -1 for built-in geometry
 };

@@ -27,6 +27,39 @@ constexpr std::array<float, kMaxLayers> filledOpacity(float opacity) {
     return opacities;
 }
 
+/// What a primary hit shows instead of its lit colour.
+enum class FalseColorMode : uint8_t {
+    Off,    ///< the lit colour
+    Depth,  ///< distance from the camera, from depthNear (dark blue) to depthFar (yellow)
+    Normal, ///< the surface normal in world axes as RGB (0.5 + 0.5·N)
+    Layer,  ///< one colour per layer id
+    Mesh,   ///< one colour per mesh (sphere, plane)
+};
+
+struct FalseColorPolicy {
+    FalseColorMode mode = FalseColorMode::Off;
+    float depthNear = 0.f; ///< world units along the ray from the camera (Depth)
+    float depthFar = 1.f;  ///< > depthNear; nearer and farther clamp to the ends
+
+    bool operator==(const FalseColorPolicy &other) const = default;
+};
+
+/// Lines drawn over a primary hit's colour.
+enum class EdgeLineMode : uint8_t {
+    Off,
+    Triangles, ///< every triangle's edges (a wireframe over the shading)
+    Outlines,  ///< silhouettes, boundaries between meshes and creases sharper than creaseDegrees
+};
+
+struct EdgePolicy {
+    EdgeLineMode mode = EdgeLineMode::Off;
+    glm::vec3 color{0.f};     ///< linear RGB of the lines
+    float widthPixels = 1.5f; ///< line width in pixels of the image (> 0)
+    float creaseDegrees = 40.f; ///< Outlines: normals further apart than this draw a crease line
+
+    bool operator==(const EdgePolicy &other) const = default;
+};
+
 /// How hits are lit.
 struct ShadingPolicy {
     bool shadows = true;      ///< trace shadow rays at all
@@ -46,6 +79,10 @@ struct ShadingPolicy {
     /// Primary rays pass through this many surfaces and show the next one (depth peeling: 0 =
     /// the first surface, as usual). Needs no layers: it counts surfaces along the ray.
     int peelSurfaces = 0;
+    /// Primary hits show a false colour instead of their lit colour (see FalseColorMode).
+    FalseColorPolicy falseColor{};
+    /// Lines over primary hits (see EdgeLineMode).
+    EdgePolicy edges{};
 
     bool operator==(const ShadingPolicy &other) const = default;
 };

@@ -27,6 +27,13 @@ public:
         Outside, ///< hits inside the volume are removed (a cutaway)
         Inside,  ///< only hits inside the volume survive
     };
+    /// What a primary ray shows where the volume's surface cuts through a closed mesh
+    /// (MeshClosure): the hollow inside, or a cap in the colour of the mesh it cuts.
+    enum class CapStyle : uint8_t {
+        None,    ///< the inside of the shell shows
+        Solid,   ///< a lit cap on the cut surface
+        Hatched, ///< a lit cap with dark diagonal stripes, as in engineering drawings
+    };
 
     ClipVolume() = default; ///< the empty box at the origin, cut away (removes nothing)
     static ClipVolume box(const glm::vec3 &boxMin, const glm::vec3 &boxMax, Keep keep) {
@@ -42,6 +49,8 @@ public:
 
     Shape shape() const { return m_shape; }
     Keep keep() const { return m_keep; }
+    CapStyle capStyle() const { return m_capStyle; }
+    void setCapStyle(CapStyle style) { m_capStyle = style; }
     const glm::vec3 &boxMin() const { return m_point; }   ///< Box
     const glm::vec3 &boxMax() const { return m_second; }  ///< Box
     const glm::vec3 &center() const { return m_point; }   ///< Sphere
@@ -78,6 +87,7 @@ private:
 
     Shape m_shape = Shape::Box;
     Keep m_keep = Keep::Outside;
+    CapStyle m_capStyle = CapStyle::None;
     glm::vec3 m_point{0.f};  // box min, sphere centre, half-space normal
     glm::vec3 m_second{0.f}; // box max
     float m_scalar = 0.f;    // sphere radius, half-space offset

@@ -46,14 +46,22 @@ public:
     glm::vec3 radiance(const Ray &primaryRay, const RayPolicy &policy, RayCounters &counters) const;
 
 private:
+    /// `travelled`: the distance from the camera to the ray's origin (a primary ray continued
+    /// through translucent or peeled surfaces), for the depth false colour.
     glm::vec3 trace(const Ray &ray, RayType type, int depth, const RayPolicy &policy,
-                    const IntegratorPlan &plan, RayCounters &counters) const;
+                    const IntegratorPlan &plan, RayCounters &counters, float travelled = 0.f) const;
+
+    /// Share (0 or 1) of an outline drawn at the primary ray `ray`: probe rays `edges.widthPixels`
+    /// apart around it (WhittedIntegratorOutlines.cpp) find a silhouette, a boundary between two
+    /// meshes or a crease. `hit` is the ray's own hit under `query`, or null if it missed.
+    float outlineCoverage(const Ray &ray, const RayQuery &query, const Hit *hit, const EdgePolicy &edges,
+                          RayCounters &counters) const;
 
     /// closestHit() that skips hits an alpha mask cuts out.
     bool closestVisibleHit(const Ray &ray, const RayQuery &query, Hit &hit) const;
 
     /// Share of a light's intensity (0..1) that reaches the shadow ray's origin.
-    float lightPassing(const Ray &shadowRay, float lightDistance, const RayPolicy &policy,
+    float lightPassing(const Ray &shadowRay, float lightDistance, const RayQuery &shadowQuery,
                        ShadowStage stage, RayCounters &counters) const;
 
     const Tracer &m_tracer;
@@ -74,6 +82,8 @@ private:
     /// Layers with geometry whose material may be cut out by an alpha mask: shadow rays must
     /// walk past their hits.
     uint32_t m_layersWithCutOutMaterial = 0;
+    /// Stripe period of hatched clip caps: 1/160 of the scene's diagonal.
+    float m_hatchPeriod = 0.f;
 };
 
 } // namespace mvcl

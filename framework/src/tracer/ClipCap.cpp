@@ -1,0 +1,113 @@
+#include "ClipCap.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mvcl::detail {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+/// Where the ray is inside a volume: [enter, leave] with the outward normals there. Empty when
+/// enter > leave; a half-space may have an infinite end.
+struct Span {
+    double enter = kInfinity, leave = -kInfinity;
+    glm::dvec3 enterNormal{0.0}, leaveNormal{0.0};
+};
+
+Span spanOf(const ClipVolume &volume, const glm::dvec3 &o, const glm::dvec3 &d) {
+    Span span;
+    switch (volume.shape()) {
+    case ClipVolume::Shape::Box: {
+        const glm::dvec3 lo(volume.boxMin()), hi(volume.boxMax());
+        span.enter = -kInfinity;
+        span.leave = kInfinity;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (d[axis] == 0.0) {
+                if (o[axis] < lo[axis] || o[axis] > hi[axis]) return {};
+                continue;
+            }
+            double near = (lo[axis] - o[axis]) / d[axis], far = (hi[axis] - o[axis]) / d[axis];
+            glm::dvec3 nearNormal(0.0);
+            nearNormal[axis] = -1.0;
+            if (near > far) {
+                std::swap(near, far);
+                nearNormal[axis] = 1.0;
+            }
+            if (near > span.enter) span.enter = near, span.enterNormal = nearNormal;
+            if (far < span.leave) span.leave = far, span.leaveNormal = -nearNormal;
+        }
+        return span;
+    }
+    case ClipVolume::Shape::Sphere: {
+        const glm::dvec3 c(volume.center());
+        const double r = volume.radius();
+        const glm::dvec3 oc = o - c;
+        const double a = glm::dot(d, d), b = glm::dot(oc, d), cc = glm::dot(oc, oc) - r * r;
+        const double discriminant = b * b - a * cc;
+        if (!(a > 0.0) || discriminant < 0.0) return {};
+        const double root = std::sqrt(discriminant);
+        span.enter = (-b - root) / a;
+        span.leave = (-b + root) / a;
+        span.enterNormal = r > 0.0 ? (oc + span.enter * d) / r : -d;
+        span.leaveNormal = r > 0.0 ? (oc + span.leave * d) / r : d;
+        return span;
+    }
+    case ClipVolume::Shape::HalfSpace: {
+        const glm::dvec3 n(volume.normal());
+        const double along = glm::dot(n, d), side = glm::dot(n, o) - double(volume.offset());
+        // Inside is n·p ≥ offset; the outward normal is −n.
+        const glm::dvec3 outward = -glm::normalize(n);
+        if (along == 0.0) return side >= 0.0 ? Span{-kInfinity, kInfinity, outward, outward} : Span{};
+        const double crossing = -side / along;
+        if (along > 0.0) return {crossing, kInfinity, outward, outward};
+        return {-kInfinity, crossing, outward, outward};
+    }
+    }
+    return {};
+}
+
+} // namespace
+
+bool hasCappedClip(const RayQuery &query) {
+    for (const ClipVolume &clip : query.clips())
+        if (clip.capStyle() != ClipVolume::CapStyle::None) return true;
+    return false;
+}
+
+std::optional<ClipCap> clipCapBefore(const Ray &ray, const RayQuery &query, float hitT) {
+    const glm::dvec3 o(ray.origin), d(ray.direction);
+    const double h = hitT;
+    // The run that holds h is the intersection of each volume's accepted run holding h, so it
+    // begins at the latest of their beginnings.
+    double runStart = -kInfinity;
+    glm::dvec3 startNormal(0.0);
+    ClipVolume::CapStyle startStyle = ClipVolume::CapStyle::None;
+    for (const ClipVolume &clip : query.clips()) {
+        const Span span = spanOf(clip, o, d);
+        double start = -kInfinity;
+        glm::dvec3 normal(0.0);
+        if (clip.keep() == ClipVolume::Keep::Inside) {
+            // Accepted inside: the run begins where the ray enters.
+            if (!(span.enter <= h && h <= span.leave)) return std::nullopt; // rounding: no cap
+            start = span.enter, normal = span.enterNormal;
+        } else if (span.enter <= span.leave && h > span.leave) {
+            // Accepted outside, hit beyond the volume: the run begins where the ray leaves it.
+            start = span.leave, normal = span.leaveNormal;
+        }
+        if (start > runStart) runStart = start, startNormal = normal, startStyle = clip.capStyle();
+    }
+    if (startStyle == ClipVolume::CapStyle::None || !(runStart > double(query.tMin)) || !(runStart < h) ||
+        !std::isfinite(runStart))
+        return std::nullopt;
+    if (glm::dot(startNormal, d) > 0.0) startNormal = -startNormal;
+    const double length = glm::length(startNormal);
+    if (!(length > 0.0)) return std::nullopt;
+    return ClipCap{float(runStart), glm::vec3(startNormal / length), startStyle};
+}
+
+} // namespace mvcl::detail

@@ -1,0 +1,30 @@
+#pragma once
+// Private to the tracer: where a primary ray that ends on the inside of a closed mesh crossed
+// the clip surface that opened the mesh, so that the integrator can draw a cap there.
+
+#include <mvcl/tracer/Ray.h>
+#include <mvcl/tracer/RayQuery.h>
+
+#include <glm/vec3.hpp>
+
+#include <optional>
+
+namespace mvcl::detail {
+
+struct ClipCap {
+    float t = 0.f;          ///< along the ray, in units of its direction's length
+    glm::vec3 normal{0.f};  ///< unit normal of the clip surface, facing the ray's origin
+    ClipVolume::CapStyle style = ClipVolume::CapStyle::None;
+};
+
+/// The points along `ray` that `query`'s clip volumes accept form runs; `hitT` (the closest
+/// accepted hit) lies in one of them. Returns where that run begins, if it begins on the
+/// surface of a capped clip volume after query.tMin: the ray crossed the cut there and, since
+/// the hit is the inside of a closed mesh, it crossed into the solid. Otherwise nothing (the
+/// run starts at the ray's origin or on an uncapped volume).
+std::optional<ClipCap> clipCapBefore(const Ray &ray, const RayQuery &query, float hitT);
+
+/// True if any of `query`'s clip volumes draws caps.
+bool hasCappedClip(const RayQuery &query);
+
+} // namespace mvcl::detail
