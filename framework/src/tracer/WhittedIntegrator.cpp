@@ -234,7 +234,7 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
         PhongTerms &section = surface.phong;
         const float clear = std::clamp(surface.transparency, 0.f, 1.f);
         section.diffuse = glm::mix(section.diffuse + section.reflectivity * section.specularColor, glm::vec3(0.8f), clear);
-        section.ambient = section.diffuse;
+        section.ambient = glm::mix(section.ambient, glm::vec3(0.8f), clear);
         surface.transparency = 0.f;
     }
     const PhongTerms &m = surface.phong;
