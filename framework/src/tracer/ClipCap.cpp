@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace mvcl::detail {
 
@@ -108,6 +109,27 @@ std::optional<ClipCap> clipCapBefore(const Ray &ray, const RayQuery &query, floa
     const double length = glm::length(startNormal);
     if (!(length > 0.0)) return std::nullopt;
     return ClipCap{float(runStart), glm::vec3(startNormal / length), startStyle};
+}
+
+std::optional<ClipCap> firstCappedRunStart(const Ray &ray, const RayQuery &query) {
+    const glm::dvec3 o(ray.origin), d(ray.direction);
+    std::vector<double> boundaries;
+    for (const ClipVolume &clip : query.clips()) {
+        const Span span = spanOf(clip, o, d);
+        if (span.enter > span.leave) continue;
+        for (const double t : {span.enter, span.leave})
+            if (std::isfinite(t) && t > double(query.tMin) && t < double(query.tMax)) boundaries.push_back(t);
+    }
+    std::sort(boundaries.begin(), boundaries.end());
+    // A run begins at a boundary whose following stretch is accepted; the middle of the
+    // stretch stands for all of it.
+    for (size_t i = 0; i < boundaries.size(); ++i) {
+        const double next = i + 1 < boundaries.size() ? boundaries[i + 1] : boundaries[i] + 1.0 + std::abs(boundaries[i]);
+        const double middle = 0.5 * (boundaries[i] + next);
+        if (!(next > boundaries[i]) || !query.acceptsPoint(glm::vec3(o + middle * d))) continue;
+        return clipCapBefore(ray, query, float(middle));
+    }
+    return std::nullopt;
 }
 
 } // namespace mvcl::detail

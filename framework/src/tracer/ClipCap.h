@@ -24,6 +24,12 @@ struct ClipCap {
 /// run starts at the ray's origin or on an uncapped volume).
 std::optional<ClipCap> clipCapBefore(const Ray &ray, const RayQuery &query, float hitT);
 
+/// The first run of accepted points after query.tMin that begins on the surface of a capped
+/// clip volume: where a ray that meets no accepted surface at all may still enter a solid's
+/// section (a slab between two planes through a solid). Whether a solid is there is for the
+/// caller to find out.
+std::optional<ClipCap> firstCappedRunStart(const Ray &ray, const RayQuery &query);
+
 /// True if any of `query`'s clip volumes draws caps.
 bool hasCappedClip(const RayQuery &query);
 

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -42,19 +43,30 @@ float schlickFresnel(float cosTheta, float ior) {
 /// The layer the tracer files a geometry under (it clamps out-of-range layers the same way).
 int layerOfGeometry(int layer) { return std::clamp(layer, 0, kMaxLayers - 1); }
 
-/// True if the ray reached `hit` from inside a closed solid: it meets a sphere's or a closed
-/// mesh's face from the side the solid's material is on.
-bool endsInsideClosedSolid(const Scene &scene, const Hit &hit, const SurfaceInteraction &si, const glm::vec3 &d) {
-    const bool leavingFace = glm::dot(si.geometricNormal, d) > 0.f; // the face points away from the ray
+/// Whether `hit` is on a closed solid (a sphere, or a mesh that is not MeshClosure::Open) and,
+/// if so, whether the ray meets it from inside (from its material's side).
+enum class SolidSide : uint8_t { NotASolid, Entering, Leaving };
+SolidSide solidSide(const Scene &scene, const Hit &hit, const SurfaceInteraction &si, const glm::vec3 &d) {
+    const bool facesAway = glm::dot(si.geometricNormal, d) > 0.f;
+    bool outward = true;
     switch (hit.kind) {
-    case GeometryKind::Sphere: return leavingFace;
-    case GeometryKind::Plane: return false;
-    case GeometryKind::Triangle: {
-        const MeshClosure closure = scene.meshes[hit.geometry].closure;
-        return closure != MeshClosure::Open && leavingFace == (closure == MeshClosure::Outward);
+    case GeometryKind::Sphere: break;
+    case GeometryKind::Plane: return SolidSide::NotASolid;
+    case GeometryKind::Triangle:
+        if (scene.meshes[hit.geometry].closure == MeshClosure::Open) return SolidSide::NotASolid;
+        outward = scene.meshes[hit.geometry].closure == MeshClosure::Outward;
+        break;
     }
+    return facesAway == outward ? SolidSide::Leaving : SolidSide::Entering;
+}
+
+/// One key per solid: meshes of one glTF node and mesh bound one solid together (MeshClosure).
+uint64_t solidKey(const Scene &scene, const Hit &hit) {
+    if (hit.kind == GeometryKind::Triangle) {
+        const TriangleMesh &mesh = scene.meshes[hit.geometry];
+        if (mesh.sourceNode >= 0) return uint64_t(1) << 63 | uint64_t(uint32_t(mesh.sourceNode)) << 31 | uint32_t(mesh.sourceMesh);
     }
-    return false;
+    return uint64_t(hit.kind) << 32 | hit.geometry;
 }
 
 void countRay(RayType type, RayCounters &counters) {
@@ -196,6 +208,39 @@ bool WhittedIntegrator::closestVisibleHit(const Ray &ray, const RayQuery &query,
     return false;
 }
 
+bool WhittedIntegrator::solidAround(const Ray &ray, const RayQuery &query, float t, Hit &solid) const {
+    // Walk the surfaces beyond t (the query's layers, no clip volumes): the first surface left
+    // from inside that was not entered on the way belongs to the innermost solid around t.
+    constexpr int kMaxWalk = 16;
+    const Scene &scene = m_tracer.scene();
+    const glm::vec3 d = glm::normalize(ray.direction);
+    RayQuery walk = query;
+    walk.clearClips();
+    walk.tMin = std::max(walk.tMin, t);
+    std::array<uint64_t, kMaxWalk> entered{};
+    int enteredCount = 0;
+    for (int step = 0; step < kMaxWalk && walk.tMin <= walk.tMax; ++step) {
+        Hit hit;
+        if (!closestVisibleHit(ray, walk, hit)) return false;
+        const SolidSide side = solidSide(scene, hit, m_tracer.interaction(ray, hit), d);
+        const uint64_t key = solidKey(scene, hit);
+        if (side == SolidSide::Entering) {
+            entered[size_t(enteredCount++)] = key;
+        } else if (side == SolidSide::Leaving) {
+            const auto end = entered.begin() + enteredCount;
+            const auto it = std::find(entered.begin(), end, key);
+            if (it == end) {
+                solid = hit;
+                return true;
+            }
+            std::copy(it + 1, end, it); // left a solid entered after t
+            --enteredCount;
+        }
+        walk.tMin = nextFloatUp(hit.t);
+    }
+    return false; // more surfaces than we follow: no cap
+}
+
 glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, const RayPolicy &policy,
                                    const IntegratorPlan &plan, RayCounters &counters, float travelled) const {
     const Scene &scene = m_tracer.scene();
@@ -203,22 +248,31 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
     const RayQuery &query = policy.query(type);
     const bool isPrimary = type == RayType::Primary;
     countRay(type, counters);
+    const glm::vec3 d = glm::normalize(ray.direction);
+    const float rayLength = glm::length(ray.direction);
+    // Where a primary ray crosses a capped clip surface into a closed solid, it shows the cut
+    // face there, as a solid face of that solid's material, in front of whatever lies inside.
+    std::optional<detail::ClipCap> cap;
     Hit hit;
-    if (!closestVisibleHit(ray, query, hit)) {
+    SurfaceInteraction si;
+    const bool found = closestVisibleHit(ray, query, hit);
+    if (isPrimary && detail::hasCappedClip(query)) {
+        // The run of accepted points that holds the hit, or (no hit at all: a slab through a
+        // solid) the first run, begins on a capped surface: is that point inside a solid?
+        cap = found ? detail::clipCapBefore(ray, query, hit.t) : detail::firstCappedRunStart(ray, query);
+        Hit solid;
+        if (cap && solidAround(ray, query, cap->t, solid))
+            hit = solid;
+        else
+            cap.reset();
+    }
+    if (found || cap) si = m_tracer.interaction(ray, hit);
+    if (!found && !cap) {
         // An outline is centred on the silhouette, so the background next to it gets half.
         if (!isPrimary || shading.edges.mode != EdgeLineMode::Outlines) return scene.background;
         return glm::mix(scene.background, shading.edges.color,
                         outlineCoverage(ray, query, nullptr, shading.edges, counters));
     }
-
-    SurfaceInteraction si = m_tracer.interaction(ray, hit);
-    const glm::vec3 d = glm::normalize(ray.direction);
-    const float rayLength = glm::length(ray.direction);
-    // A primary ray that ends on the inside of a closed solid went through a cut: a capped clip
-    // volume shows its cut surface there, as a solid face of the mesh's material.
-    std::optional<detail::ClipCap> cap;
-    if (isPrimary && detail::hasCappedClip(query) && endsInsideClosedSolid(scene, hit, si, d))
-        cap = detail::clipCapBefore(ray, query, hit.t);
     const float shownT = cap ? cap->t : hit.t;
     // The ray cone's width where it meets the surface picks the texture level.
     const float coneWidth = ray.coneWidth + ray.coneSpread * shownT * rayLength;

@@ -57,6 +57,10 @@ private:
     float outlineCoverage(const Ray &ray, const RayQuery &query, const Hit *hit, const EdgePolicy &edges,
                           RayCounters &counters) const;
 
+    /// True if the point at `t` along `ray` lies inside a closed solid (MeshClosure) of the
+    /// layers `query` may hit; `solid` is then the hit where the ray leaves the innermost one.
+    bool solidAround(const Ray &ray, const RayQuery &query, float t, Hit &solid) const;
+
     /// closestHit() that skips hits an alpha mask cuts out.
     bool closestVisibleHit(const Ray &ray, const RayQuery &query, Hit &hit) const;
 
