@@ -13,7 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include <array>
-#include <functional>
+#include <utility>
 
 namespace mvcl {
 namespace {
@@ -137,6 +137,40 @@ TEST(ClipCaps, NestedSolidsShowTheInnermostMaterialOnTheCut) {
         }
     EXPECT_GT(innerCapPixels, 20);
     EXPECT_EQ(mismatches, 0);
+}
+
+TEST(ClipCaps, ASolidInsideTheCutSolidStaysHiddenBehindTheCap) {
+    // A red box wholly below the cut, inside the blue one: a cut solid hides what it encloses,
+    // so the image is the truncated blue box alone.
+    const Scene nested = sceneOf({box({-1, -1, -1}, {1, 1, 1}, 0, 0), box({-0.3f, -0.3f, -0.8f}, {0.3f, 0.3f, -0.5f}, 1, 1)});
+    const Scene truncated = sceneOf({box({-1, -1, -1}, {1, 1, 0}, 0, 0)});
+    EXPECT_LE(differingPixels(render(nested, cutUpperHalf(ClipVolume::CapStyle::Solid)), render(truncated, RayPolicy{})),
+              kSize / 2);
+    // Without caps the red box shows through the opening.
+    EXPECT_GT(differingPixels(render(nested, cutUpperHalf(ClipVolume::CapStyle::None)), render(truncated, RayPolicy{})),
+              kSize * kSize / 20);
+}
+
+TEST(ClipCaps, ASlabThroughASolidRendersAsTheSlabItself) {
+    // Keep only −0.2 ≤ z ≤ 0.2: many rays meet no kept surface at all (they enter the slab
+    // through its top and leave it through its bottom inside the box), yet see the top cap.
+    const Scene whole = sceneOf({box({-1, -1, -1}, {1, 1, 1}, 0, 0)});
+    const Scene slab = sceneOf({box({-1, -1, -0.2f}, {1, 1, 0.2f}, 0, 0)});
+    RayPolicy capped;
+    for (const auto &[normal, offset] : {std::pair{glm::vec3(0, 0, 1), 0.2f}, std::pair{glm::vec3(0, 0, -1), 0.2f}}) {
+        ClipVolume side = ClipVolume::halfSpace(normal, offset, ClipVolume::Keep::Outside);
+        side.setCapStyle(ClipVolume::CapStyle::Solid);
+        capped.query(RayType::Primary).addClip(side);
+    }
+    EXPECT_LE(differingPixels(render(whole, capped), render(slab, RayPolicy{})), kSize / 2);
+    RayPolicy hollow = capped;
+    hollow.query(RayType::Primary).clearClips();
+    for (const ClipVolume &side : capped.query(RayType::Primary).clips()) {
+        ClipVolume uncapped = side;
+        uncapped.setCapStyle(ClipVolume::CapStyle::None);
+        hollow.query(RayType::Primary).addClip(uncapped);
+    }
+    EXPECT_GT(differingPixels(render(whole, hollow), render(slab, RayPolicy{})), kSize * kSize / 20);
 }
 
 TEST(ClipCaps, OpenMeshesAndUncappedVolumesShowTheHollowInside) {
