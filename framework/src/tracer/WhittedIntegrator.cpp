@@ -208,7 +208,8 @@ bool WhittedIntegrator::closestVisibleHit(const Ray &ray, const RayQuery &query,
     return false;
 }
 
-bool WhittedIntegrator::solidAround(const Ray &ray, const RayQuery &query, float t, Hit &solid) const {
+bool WhittedIntegrator::solidAround(const Ray &ray, const RayQuery &query, float t, const Hit *firstSurface,
+                                    Hit &solid) const {
     // Walk the surfaces beyond t (the query's layers, no clip volumes): the first surface left
     // from inside that was not entered on the way belongs to the innermost solid around t.
     constexpr int kMaxWalk = 16;
@@ -221,7 +222,10 @@ bool WhittedIntegrator::solidAround(const Ray &ray, const RayQuery &query, float
     int enteredCount = 0;
     for (int step = 0; step < kMaxWalk && walk.tMin <= walk.tMax; ++step) {
         Hit hit;
-        if (!closestVisibleHit(ray, walk, hit)) return false;
+        if (step == 0 && firstSurface)
+            hit = *firstSurface;
+        else if (!closestVisibleHit(ray, walk, hit))
+            return false;
         const SolidSide side = solidSide(scene, hit, m_tracer.interaction(ray, hit), d);
         const uint64_t key = solidKey(scene, hit);
         if (side == SolidSide::Entering) {
@@ -261,7 +265,9 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
         // solid) the first run, begins on a capped surface: is that point inside a solid?
         cap = found ? detail::clipCapBefore(ray, query, hit.t) : detail::firstCappedRunStart(ray, query);
         Hit solid;
-        if (cap && solidAround(ray, query, cap->t, solid))
+        // Between the run's start and the accepted hit every point is accepted, so that hit is
+        // the first surface beyond the start: the walk begins with it.
+        if (cap && solidAround(ray, query, cap->t, found ? &hit : nullptr, solid))
             hit = solid;
         else
             cap.reset();

@@ -59,7 +59,8 @@ private:
 
     /// True if the point at `t` along `ray` lies inside a closed solid (MeshClosure) of the
     /// layers `query` may hit; `solid` is then the hit where the ray leaves the innermost one.
-    bool solidAround(const Ray &ray, const RayQuery &query, float t, Hit &solid) const;
+    /// `firstSurface`, if not null, is the first surface beyond t (found already).
+    bool solidAround(const Ray &ray, const RayQuery &query, float t, const Hit *firstSurface, Hit &solid) const;
 
     /// closestHit() that skips hits an alpha mask cuts out.
     bool closestVisibleHit(const Ray &ray, const RayQuery &query, Hit &hit) const;
