@@ -15,7 +15,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
+#include <ranges>
 
 namespace mvcl {
 
@@ -105,6 +107,22 @@ WhittedIntegrator::WhittedIntegrator(const Tracer &tracer)
     for (const Plane &plane : scene.planes) addGeometry(plane.layer, plane.material);
     const Bounds3f bounds = scene.bounds();
     if (!bounds.isEmpty()) m_hatchPeriod = glm::length(bounds.extent()) / 160.f;
+
+    std::map<uint64_t, SolidBounds> solids;
+    for (uint32_t i = 0; i < scene.meshes.size(); ++i) {
+        const TriangleMesh &mesh = scene.meshes[i];
+        if (mesh.closure == MeshClosure::Open) continue;
+        Hit probe;
+        probe.kind = GeometryKind::Triangle;
+        probe.geometry = i;
+        SolidBounds &solid = solids[solidKey(scene, probe)];
+        for (const glm::vec3 &p : mesh.positions) solid.bounds.expand(p);
+        solid.layers |= layerBit(layerOfGeometry(mesh.layer));
+    }
+    for (const SolidBounds &solid : solids | std::views::values) m_solidBounds.push_back(solid);
+    for (const Sphere &sphere : scene.spheres)
+        m_solidBounds.push_back({{sphere.center - glm::vec3(std::abs(sphere.radius)), sphere.center + glm::vec3(std::abs(sphere.radius))},
+                                 layerBit(layerOfGeometry(sphere.layer))});
 }
 
 WhittedIntegrator::~WhittedIntegrator() = default;
@@ -218,6 +236,24 @@ bool WhittedIntegrator::solidAround(const Ray &ray, const RayQuery &query, float
     RayQuery walk = query;
     walk.clearClips();
     walk.tMin = std::max(walk.tMin, t);
+    // Only solids whose (slightly widened) bounds hold the point can hold it, and the ray leaves
+    // such a solid before it leaves its bounds: the walk ends there.
+    const glm::vec3 point = ray.at(t);
+    float leaveBounds = -std::numeric_limits<float>::infinity();
+    for (const SolidBounds &candidate : m_solidBounds) {
+        if ((candidate.layers & query.layerMask) == 0) continue;
+        const glm::vec3 margin = 1e-4f * candidate.bounds.extent() + 1e-6f * glm::abs(point);
+        const glm::vec3 lo = candidate.bounds.min - margin, hi = candidate.bounds.max + margin;
+        if (!glm::all(glm::greaterThanEqual(point, lo)) || !glm::all(glm::lessThanEqual(point, hi))) continue;
+        float leave = std::numeric_limits<float>::infinity();
+        for (int axis = 0; axis < 3; ++axis)
+            if (ray.direction[axis] != 0.f)
+                leave = std::min(leave, ((ray.direction[axis] > 0.f ? hi[axis] : lo[axis]) - ray.origin[axis]) /
+                                            ray.direction[axis]);
+        leaveBounds = std::max(leaveBounds, leave);
+    }
+    if (!(leaveBounds >= walk.tMin)) return false;
+    walk.tMax = std::min(walk.tMax, nextFloatUp(leaveBounds));
     std::array<uint64_t, kMaxWalk> entered{};
     int enteredCount = 0;
     for (int step = 0; step < kMaxWalk && walk.tMin <= walk.tMax; ++step) {
@@ -226,6 +262,7 @@ bool WhittedIntegrator::solidAround(const Ray &ray, const RayQuery &query, float
             hit = *firstSurface;
         else if (!closestVisibleHit(ray, walk, hit))
             return false;
+        if (hit.t > walk.tMax) return false;
         const SolidSide side = solidSide(scene, hit, m_tracer.interaction(ray, hit), d);
         const uint64_t key = solidKey(scene, hit);
         if (side == SolidSide::Entering) {

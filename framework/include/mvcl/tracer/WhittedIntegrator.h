@@ -5,6 +5,7 @@
 /// through transparent occluders scaled by their transparency (colourless). Driven per pixel by
 /// a RayPolicy (plain data) and the IntegratorPlan of that policy (which stages it needs).
 
+#include <mvcl/core/Bounds3.h>
 #include <mvcl/tracer/IntegratorPlan.h>
 #include <mvcl/tracer/Ray.h>
 #include <mvcl/tracer/RayCounters.h>
@@ -14,6 +15,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace mvcl {
 
@@ -89,6 +91,13 @@ private:
     uint32_t m_layersWithCutOutMaterial = 0;
     /// Stripe period of hatched clip caps: 1/160 of the scene's diagonal.
     float m_hatchPeriod = 0.f;
+    /// Bounds and layer bit of each closed solid (a sphere, or the meshes of one closed glTF
+    /// node and mesh): a point outside all of them is inside none, and no walk is needed.
+    struct SolidBounds {
+        Bounds3f bounds;
+        uint32_t layers = 0;
+    };
+    std::vector<SolidBounds> m_solidBounds;
 };
 
 } // namespace mvcl
