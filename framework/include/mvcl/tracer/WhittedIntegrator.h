@@ -5,6 +5,8 @@
 /// through transparent occluders scaled by their transparency (colourless). Driven per pixel by
 /// a RayPolicy (plain data) and the IntegratorPlan of that policy (which stages it needs).
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/tracer/IntegratorPlan.h>
 #include <mvcl/tracer/Ray.h>
 #include <mvcl/tracer/RayCounters.h>
@@ -24,7 +26,7 @@ namespace detail {
 class MaterialEvaluator;
 }
 
-class WhittedIntegrator {
+class MVCL_EXPORT WhittedIntegrator {
 public:
     /// Reads the scene's layers and materials once (O(meshes + spheres + planes + materials)),
     /// so that plan() costs a few mask operations.

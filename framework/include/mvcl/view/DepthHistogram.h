@@ -26,6 +26,8 @@
 ///     if (!histogram.suggestions.empty())
 ///         applyLensDistance(*stack.lens(lensIndex), histogram.suggestions[0].distance);
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/LensRegion.h>
 #include <mvcl/lens/PolicyMap.h>
 #include <mvcl/tracer/RayPolicy.h>
@@ -75,7 +77,7 @@ struct DepthSuggestion {
 };
 
 /// Plain data: copy it, keep it, show it.
-struct DepthHistogram {
+struct MVCL_EXPORT DepthHistogram {
     float tNear = 0.f; ///< range of the bins (fitted to the crossings unless the settings fix it)
     float tFar = 0.f;
     std::vector<uint32_t> counts;   ///< crossings per bin; empty when nothing was hit
@@ -136,14 +138,14 @@ struct DepthHistogramRequest {
 /// The request for lens `lensIndex` of `stack`: its committed region, and the other lenses
 /// composed over `base` as surroundings. Reads committed snapshots only, so it may run while
 /// lenses are edited; throws mvcl::Error for a bad index or size.
-DepthHistogramRequest depthHistogramRequest(const LensStack &stack, int lensIndex, const RayPolicy &base,
+MVCL_EXPORT DepthHistogramRequest depthHistogramRequest(const LensStack &stack, int lensIndex, const RayPolicy &base,
                                             const Camera &camera, int width, int height,
                                             const DepthHistogramSettings &settings = {});
 
 /// Samples the rays and builds the histogram. Const on its inputs: any thread, any number at
 /// once. An empty region (or one outside the image) gives an empty histogram. Throws
 /// mvcl::Error for a non-positive image size or surroundings of another size.
-DepthHistogram computeDepthHistogram(const Tracer &tracer, const DepthHistogramRequest &request,
+MVCL_EXPORT DepthHistogram computeDepthHistogram(const Tracer &tracer, const DepthHistogramRequest &request,
                                      std::stop_token stop = {});
 
 /// Name of the layer lens's distance property (plugins/layer).
@@ -152,6 +154,6 @@ inline constexpr const char *kLensDistanceProperty = "distance";
 /// Sets the lens's `distance` to `distance` and commits (with whatever else is staged). Throws
 /// mvcl::Error, keeping the previous snapshot, if the lens has no such property or the value is
 /// out of its range.
-void applyLensDistance(Lens &lens, float distance);
+MVCL_EXPORT void applyLensDistance(Lens &lens, float distance);
 
 } // namespace mvcl

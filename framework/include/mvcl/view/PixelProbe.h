@@ -7,6 +7,8 @@
 ///     EXPECT_EQ(probe.policy(32, 32).ray.query(RayType::Primary).layerMask, layersFrom(1));
 ///     EXPECT_EQ(probe.primaryHitLayer(tracer, camera, 32, 32), 1);
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/LensStack.h>
 #include <mvcl/tracer/Hit.h>
 #include <mvcl/view/Picking.h>
@@ -19,7 +21,7 @@ namespace mvcl {
 class Camera;
 class Tracer;
 
-class PixelProbe {
+class MVCL_EXPORT PixelProbe {
 public:
     PixelProbe(const LensStack &stack, int width, int height, const RayPolicy &base = {});
 
