@@ -17,7 +17,7 @@
 /// any thread; the result is plain data. A std::stop_token cancels a computation made stale by
 /// an edit.
 ///
-///     DepthHistogramRequest request = depthHistogramRequest(stack, lensIndex, base, camera, w, h);
+///     DepthHistogramRequest request = depthHistogramRequest(tracer, stack, lensIndex, base, camera, w, h);
 ///     auto future = std::async(std::launch::async, [&tracer, request] {
 ///         return computeDepthHistogram(tracer, request);
 ///     });
@@ -136,11 +136,12 @@ struct DepthHistogramRequest {
 };
 
 /// The request for lens `lensIndex` of `stack`: its committed region, and the other lenses
-/// composed over `base` as surroundings. Reads committed snapshots only, so it may run while
+/// composed over `base` as surroundings, each as it is in this view of the tracer's scene
+/// (lensContextOf(), as a render shows it). Reads committed snapshots only, so it may run while
 /// lenses are edited; throws mvcl::Error for a bad index or size.
-MVCL_EXPORT DepthHistogramRequest depthHistogramRequest(const LensStack &stack, int lensIndex, const RayPolicy &base,
-                                            const Camera &camera, int width, int height,
-                                            const DepthHistogramSettings &settings = {});
+MVCL_EXPORT DepthHistogramRequest depthHistogramRequest(const Tracer &tracer, const LensStack &stack, int lensIndex,
+                                                        const RayPolicy &base, const Camera &camera, int width,
+                                                        int height, const DepthHistogramSettings &settings = {});
 
 /// Samples the rays and builds the histogram. Const on its inputs: any thread, any number at
 /// once. An empty region (or one outside the image) gives an empty histogram. Throws
