@@ -7,6 +7,14 @@
 #                                                   plugins as <exe dir>/../lib/mvcl/plugins
 #   <prefix>/${CMAKE_INSTALL_LIBDIR}/cmake/mvcl/    mvclConfig.cmake, mvclConfigVersion.cmake,
 #                                                   mvclTargets.cmake, MvclLensPlugin.cmake
+#
+# and the testing component (MVCL_BUILD_TESTING_LIBRARY, find_package(mvcl COMPONENTS testing)):
+#
+#   <prefix>/include/mvcl/testing/...               conformance suite and LensTestScene headers
+#   <prefix>/${CMAKE_INSTALL_LIBDIR}/libmvcl_testing.a
+#   <prefix>/bin/mvcl-lens-conformance              the suite on plugin modules
+#   <prefix>/${CMAKE_INSTALL_LIBDIR}/cmake/mvcl/mvclTestingTargets.cmake
+#                                                   mvcl::testing, mvcl::mvcl-lens-conformance
 
 include(CMakePackageConfigHelpers)
 
@@ -24,6 +32,17 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/framework/include/mvcl
 set_target_properties(mvcl-render PROPERTIES INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
 
 install(EXPORT mvclTargets NAMESPACE mvcl:: DESTINATION ${MVCL_INSTALL_CMAKEDIR})
+
+if(TARGET mvcl_testing)
+    install(TARGETS mvcl_testing mvcl-lens-conformance EXPORT mvclTestingTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+    install(DIRECTORY ${PROJECT_SOURCE_DIR}/testing/include/mvcl/testing
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/mvcl
+        FILES_MATCHING PATTERN "*.h")
+    set_target_properties(mvcl-lens-conformance PROPERTIES INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
+    install(EXPORT mvclTestingTargets NAMESPACE mvcl:: DESTINATION ${MVCL_INSTALL_CMAKEDIR})
+endif()
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/mvclConfig.cmake.in
     ${PROJECT_BINARY_DIR}/mvclConfig.cmake
     INSTALL_DESTINATION ${MVCL_INSTALL_CMAKEDIR}

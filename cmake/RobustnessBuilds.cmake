@@ -10,7 +10,7 @@
 #                          Used by scripts/ci-fuzz.sh.
 #   MVCL_EXTRA_COMPILE_OPTIONS      options for every target, placed after mvcl's own so that
 #                                   they win (-O0, -O3 -march=native, ...).
-#   MVCL_FRAMEWORK_COMPILE_OPTIONS  options for the mvcl library only, likewise placed last:
+#   MVCL_FRAMEWORK_COMPILE_OPTIONS  options for the mvcl library only (its objects), likewise placed last:
 #                                   -ffp-contract=fast there shows that the tracer's results do
 #                                   not depend on FMA contraction, while the test programs that
 #                                   generate the rays keep computing the same rays.
@@ -45,5 +45,5 @@ set(MVCL_FRAMEWORK_COMPILE_OPTIONS "" CACHE STRING "Compile options for the mvcl
 add_compile_options(${MVCL_EXTRA_COMPILE_OPTIONS})
 if(MVCL_FRAMEWORK_COMPILE_OPTIONS)
     # Deferred to the end of the top-level CMakeLists.txt, when the mvcl target exists.
-    cmake_language(DEFER CALL target_compile_options mvcl PRIVATE ${MVCL_FRAMEWORK_COMPILE_OPTIONS})
+    cmake_language(DEFER CALL target_compile_options mvcl_objects PRIVATE ${MVCL_FRAMEWORK_COMPILE_OPTIONS})
 endif()

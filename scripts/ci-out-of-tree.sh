@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Builds the out-of-tree lens example (examples/out-of-tree-lens) against an *installed* mvcl
-# and renders with it: proves that find_package(mvcl) + mvcl_add_lens_plugin() are enough to
-# write a lens without the mvcl source tree, and that the installed mvcl-render finds both its
-# own plugins (<prefix>/lib/mvcl/plugins) and the new one (MVCL_PLUGIN_PATH).
+# Builds the out-of-tree lens example (examples/out-of-tree-lens) against an *installed* mvcl,
+# tests it and renders with it: proves that find_package(mvcl COMPONENTS testing),
+# mvcl_add_lens_plugin() and mvcl::testing are enough to write and test a lens without the mvcl
+# source tree — its unit test (with the conformance suite linked in) and the installed
+# mvcl-lens-conformance on the module both pass — and that the installed mvcl-render finds both
+# its own plugins (<prefix>/lib/mvcl/plugins) and the new one (MVCL_PLUGIN_PATH).
 #
 #   scripts/ci-out-of-tree.sh [build dir]     (default: build/, configured and built if needed)
 #
@@ -23,7 +25,7 @@ if [ ! -f "$build_dir/CMakeCache.txt" ]; then
   cmake -S "$repo" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
 step "building mvcl in $build_dir"
-cmake --build "$build_dir" --target mvcl mvcl-render mvcl-lens-plugins -- -j"$jobs"
+cmake --build "$build_dir" --target mvcl mvcl-render mvcl-lens-plugins mvcl_testing mvcl-lens-conformance -- -j"$jobs"
 step "installing to $prefix"
 cmake --install "$build_dir" --prefix "$prefix" >/dev/null
 
@@ -32,6 +34,16 @@ cmake -S "$repo/examples/out-of-tree-lens" -B "$example_build" -G Ninja -DCMAKE_
   -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
 cmake --build "$example_build" -- -j"$jobs"
 [ -f "$example_build/mvcl-lens-invert.so" ] || { step "FAIL: mvcl-lens-invert.so was not built"; exit 1; }
+
+step "running the example's tests: its unit test (with the conformance suite) and mvcl-lens-conformance on the module"
+env -u LD_LIBRARY_PATH ctest --test-dir "$example_build" --output-on-failure -j"$jobs"
+listed="$("$example_build/invert-lens-test" --gtest_list_tests)"
+grep -q "^LensConformance/invert\.$" <<<"$listed" \
+  || { step "FAIL: the unit test has no LensConformance/invert suite"; echo "$listed" >&2; exit 1; }
+# By name through MVCL_PLUGIN_PATH, as the docs show it.
+env -u LD_LIBRARY_PATH MVCL_PLUGIN_PATH="$example_build" "$prefix/bin/mvcl-lens-conformance" invert \
+  --gtest_filter='LensConformance/invert.*' --gtest_brief=1 \
+  || { step "FAIL: mvcl-lens-conformance invert"; exit 1; }
 
 # Nothing from the source or build tree may leak in: only the prefix and the example build.
 render="$prefix/bin/mvcl-render"
@@ -52,4 +64,4 @@ render_cube -o "$image" --lens invert:amount=1,shape=ellipse,center=[0.5,0.5],si
 # The same render without the invert lens must differ, or the plugin did nothing.
 render_cube -o "$work/without-invert.png"
 ! cmp -s "$image" "$work/without-invert.png" || { step "FAIL: the invert lens changed no pixel"; exit 1; }
-echo "ci-out-of-tree: the installed package built the example lens and the installed mvcl-render rendered with it"
+echo "ci-out-of-tree: the installed package built and tested the example lens, and the installed mvcl-render rendered with it"

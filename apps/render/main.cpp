@@ -327,8 +327,11 @@ int run(const RenderCommandLine &cl) {
     std::printf("geometry   %zu triangles in %zu meshes, %zu spheres, %zu planes, %d layers, %zu lights\n",
                 build.triangles, scene.meshes.size(), scene.spheres.size(), scene.planes.size(),
                 scene.layers.count(), scene.lights.size());
-    std::printf("bvh        %.1f ms build, %zu nodes, depth %d, %.1f MiB\n", build.buildMilliseconds, build.nodes,
-                build.maxDepth, double(build.memoryBytes) / (1024.0 * 1024.0));
+    // Traversal walks the wide tree; the depth is the binary tree's it was collapsed from (a few
+    // primitives give one wide node over a binary tree several levels deep), so both are named.
+    std::printf("bvh        %.1f ms build, %zu wide node%s over %zu leaves (binary tree depth %d), %.1f MiB\n",
+                build.buildMilliseconds, build.nodes, build.nodes == 1 ? "" : "s", build.leaves, build.maxDepth,
+                double(build.memoryBytes) / (1024.0 * 1024.0));
     const RenderSettings settings = session.settings();
     const ConvergenceStats reached = session.convergence();
     std::printf("render     %dx%d, %s, %d threads: %.1f ms\n", cl.width, cl.height, samplingName(settings).c_str(),

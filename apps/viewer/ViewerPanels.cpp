@@ -224,9 +224,10 @@ void Viewer::drawHistogramPanel() {
     if (ImGui::Button(busy ? "computing ..." : "depth histogram under the lens")) {
         const glm::ivec2 size = m_controller->viewSize();
         // The request is built here (it reads the lenses); the rays are traced on a worker.
-        DepthHistogramRequest request = depthHistogramRequest(m_controller->lensStack(), index, m_controller->basePolicy(),
-                                                              m_controller->camera(), size.x, size.y);
         const Tracer &tracer = m_controller->tracer();
+        DepthHistogramRequest request = depthHistogramRequest(tracer, m_controller->lensStack(), index,
+                                                              m_controller->basePolicy(), m_controller->camera(),
+                                                              size.x, size.y);
         stopHistogramWorker();
         {
             std::lock_guard lock(m_histogramMutex);

@@ -95,6 +95,22 @@ TEST(RenderCli, InfoPrintsLayersWithoutRendering) {
     EXPECT_EQ(r.output.find("wrote"), std::string::npos);
 }
 
+TEST(RenderCli, BvhLineSaysWhichTreeItsNodesAndDepthCount) {
+    // A scene of a few primitives printed "1 nodes, depth 6": the node count is the wide tree's,
+    // the depth the binary tree's it was collapsed from. The line names both.
+    const fs::path out = outDir() / "bvh-line.png";
+    const CommandResult r = runRender("builtin:cube-in-cube --size 8x8 --spp 1 -o " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::regex line(R"(bvh +[0-9.]+ ms build, ([0-9]+) wide nodes? over ([0-9]+) leaves \(binary tree depth ([0-9]+)\))");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.output, m, line)) << r.output;
+    const int nodes = std::stoi(m[1]), leaves = std::stoi(m[2]), depth = std::stoi(m[3]);
+    EXPECT_GE(nodes, 1);
+    EXPECT_GE(leaves, nodes) << "every wide node has at least one leaf below it";
+    EXPECT_LE(leaves, 1 << depth) << "a binary tree of depth d has at most 2^d leaves";
+    EXPECT_EQ(r.output.find(" 1 wide nodes"), std::string::npos) << "singular for one node";
+}
+
 TEST(RenderCli, EmptySceneLoadsAndRendersBackground) {
     const std::string empty = quoted(dataPath("models/EdgeCases/assimp/TestNoRootNode/SceneWithoutNodes.gltf"));
     const CommandResult info = runRender(empty + " --info");

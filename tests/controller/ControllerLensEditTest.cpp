@@ -1,7 +1,7 @@
 // Controller lens edits from synthetic input: drag, resize by corner, edge and polygon vertex,
 // reorder, enable/disable, duplicate/delete, add every registered type, property edits.
 
-#include "ErrorOf.h"
+#include <mvcl/testing/ErrorOf.h>
 #include "controller/ControllerFixture.h"
 
 #include <mvcl/view/RenderSession.h>

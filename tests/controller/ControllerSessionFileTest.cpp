@@ -1,7 +1,7 @@
 // Controller session files: save → load round trip, broken files leave the state untouched
 // with an error naming the file, the recovery copy after every step, dropped files.
 
-#include "ErrorOf.h"
+#include <mvcl/testing/ErrorOf.h>
 #include "controller/ControllerFixture.h"
 
 #include <mvcl/io/LensStackFile.h>

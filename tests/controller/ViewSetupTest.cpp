@@ -1,7 +1,7 @@
 // ViewSetup: which scene, camera and layer rules a view gets from a request and a session file,
 // and the world ↔ scene conversion of cameras.
 
-#include "ErrorOf.h"
+#include <mvcl/testing/ErrorOf.h>
 #include "controller/ControllerFixture.h"
 
 #include <mvcl/controller/ViewCoordinates.h>

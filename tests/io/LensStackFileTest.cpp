@@ -4,7 +4,7 @@
 #define MVCL_LENS_STATIC_ID every_type_test_lens
 #include <mvcl/lens/LensPlugin.h>
 
-#include "ErrorOf.h"
+#include <mvcl/testing/ErrorOf.h>
 
 #include <mvcl/core/Error.h>
 #include <mvcl/io/LensStackFile.h>

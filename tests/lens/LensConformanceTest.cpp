@@ -1,9 +1,11 @@
-// The conformance suite, run over every lens type the in-tree plugin modules register, plus
-// tests that each check rejects a lens that breaks its rule (so none of them passes vacuously).
+// The conformance suite (mvcl/testing/LensConformanceSuite.h), run over every lens type the
+// in-tree plugin modules register, plus tests that each check rejects a lens that breaks its
+// rule (so none of them passes vacuously).
 
 #include "InTreeLensRegistry.h"
-#include "LensConformance.h"
 #include "TestLenses.h"
+
+#include <mvcl/testing/LensConformanceSuite.h>
 
 #include <gtest/gtest.h>
 
@@ -17,29 +19,15 @@ using namespace mvcl::test;
 
 namespace {
 
-LensSubject registeredSubject(const std::string &type) {
-    return {type, [type] { return inTreeLenses().registry.create(type); }};
-}
-
-std::vector<LensSubject> registeredSubjects() {
-    std::vector<LensSubject> subjects;
-    for (const std::string &type : inTreeLenses().registry.lensTypes())
-        subjects.push_back(registeredSubject(type));
-    return subjects;
-}
-
-/// Reproducible per lens type and per check, so a failure can be rerun alone.
-Random randomFor(const std::string &type, const std::string &check) {
-    return Random(uint32_t(std::hash<std::string>{}(type + "/" + check)));
-}
-
-std::string testNameOf(const ::testing::TestParamInfo<std::string> &info) {
-    std::string name;
-    for (const char c : info.param) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-    return name;
-}
+/// Every check of the suite on every in-tree lens type (LensConformance/<type>.<check>), the
+/// same registration an out-of-tree plugin's tests and mvcl-lens-conformance use.
+const int kInTreeConformanceTests = registerLensConformanceTests(inTreeLenses().registry);
 
 } // namespace
+
+// The test tint lens as a statically linked plugin (StaticTintLens.cpp): the one line a plugin
+// author's test binary needs, here giving LensConformance/test-tint.<check>.
+MVCL_LENS_CONFORMANCE_TESTS(tint);
 
 TEST(LensConformanceSetup, FindsTheInTreeLensPlugins) {
     for (const Error &error : inTreeLenses().loadErrors) ADD_FAILURE() << error.what();
@@ -47,84 +35,13 @@ TEST(LensConformanceSetup, FindsTheInTreeLensPlugins) {
     ASSERT_FALSE(types.empty()) << "no lens plugin found; the conformance suite would test nothing";
     for (const char *required : {"layer", "achromatic", "shadow"})
         EXPECT_TRUE(inTreeLenses().registry.contains(required)) << required;
+    EXPECT_EQ(kInTreeConformanceTests, int(types.size() * conformanceChecks().size()));
 }
-
-class LensConformance : public ::testing::TestWithParam<std::string> {
-protected:
-    const std::string &type() const { return GetParam(); }
-    LensSubject subject() const { return registeredSubject(type()); }
-    Random random(const std::string &check) const { return randomFor(type(), check); }
-};
-
-TEST_P(LensConformance, DefaultsBuildACommittedLensThatReadsEveryParameter) {
-    EXPECT_TRUE(checkDefaults(type(), subject().create));
-}
-
-TEST_P(LensConformance, EveryPropertyRoundTripsThroughItsText) {
-    Random random = this->random("round-trip");
-    EXPECT_TRUE(checkPropertyRoundTrip(subject().create, random));
-}
-
-TEST_P(LensConformance, RejectsUnknownKeysWrongTypesAndOutOfRangeValues) {
-    EXPECT_TRUE(checkRejectsBadValues(subject().create));
-}
-
-TEST_P(LensConformance, DisabledLensChangesNothing) {
-    Random random = this->random("disabled");
-    EXPECT_TRUE(checkDisabledChangesNothing(subject().create, random));
-}
-
-TEST_P(LensConformance, LensOutsideTheImageChangesNothing) {
-    Random random = this->random("outside");
-    EXPECT_TRUE(checkOutsideImageChangesNothing(subject().create, random));
-}
-
-TEST_P(LensConformance, DeclaredIdempotenceHoldsWhenRendered) {
-    Random random = this->random("idempotent");
-    EXPECT_TRUE(checkIdempotence(subject().create, random));
-}
-
-TEST_P(LensConformance, DeclaredCommutativityHoldsWhenRendered) {
-    Random random = this->random("commutes");
-    EXPECT_TRUE(checkCommutes(subject(), registeredSubjects(), random));
-}
-
-TEST_P(LensConformance, RayTypeMaskIsHonoured) {
-    Random random = this->random("rays");
-    EXPECT_TRUE(checkRayTypeMask(subject().create, random));
-}
-
-TEST_P(LensConformance, CommitsWhileOtherThreadsComposeAndRender) {
-    Random random = this->random("threads");
-    const ::testing::AssertionResult result = checkThreadSafety(subject().create, random);
-    EXPECT_TRUE(result);
-    RecordProperty("threads", result.message());
-}
-
-TEST_P(LensConformance, ContextAndViewDependenceAreHonoured) {
-    Random random = this->random("context");
-    EXPECT_TRUE(checkContext(subject().create, random));
-}
-
-TEST_P(LensConformance, PropertyTableIsDocumented) {
-    EXPECT_TRUE(checkDocumented(subject().create));
-}
-
-INSTANTIATE_TEST_SUITE_P(InTree, LensConformance,
-                         ::testing::ValuesIn(inTreeLenses().registry.lensTypes()), testNameOf);
 
 // --- The checks themselves: an honest test lens passes all of them, lenses that break one
 // rule each fail the check for that rule.
 
 namespace {
-
-template <class LensClass> LensFactory committedFactory() {
-    return [] {
-        auto lens = std::make_shared<LensClass>();
-        lens->commit();
-        return std::shared_ptr<Lens>(lens);
-    };
-}
 
 /// c' = gain·c + lift: two such maps commute only when they are equal, and applying one twice
 /// equals once only for the identity. `Claim` is the algebra it (falsely) declares.

@@ -3,9 +3,9 @@
 #include <mvcl/lens/LensStack.h>
 
 #include "lens/FixedLens.h"
-#include "lens/LensConformanceSupport.h"
 
 #include <mvcl/core/Error.h>
+#include <mvcl/testing/LensConformanceSupport.h>
 #include <mvcl/view/Renderer.h>
 
 #include <gtest/gtest.h>

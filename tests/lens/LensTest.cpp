@@ -1,6 +1,6 @@
 #include <mvcl/lens/Lens.h>
 
-#include "ErrorOf.h"
+#include <mvcl/testing/ErrorOf.h>
 
 #include <mvcl/core/Error.h>
 #include <mvcl/model/LayerTable.h>

@@ -3,7 +3,7 @@
 // answers what a pixel's primary ray hits under a stack without rendering an image.
 
 #include "InTreeLensRegistry.h"
-#include "LensConformance.h"
+#include <mvcl/testing/LensConformance.h>
 #include "TestLenses.h"
 
 #include <mvcl/view/PixelProbe.h>

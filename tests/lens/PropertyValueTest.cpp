@@ -1,7 +1,7 @@
 #include <mvcl/lens/PropertyDecl.h>
 #include <mvcl/lens/PropertyValues.h>
 
-#include "ErrorOf.h"
+#include <mvcl/testing/ErrorOf.h>
 
 #include <mvcl/core/Error.h>
 #include <mvcl/model/LayerTable.h>

@@ -287,7 +287,7 @@ TEST(DepthHistogram, LensInAStackLeavesItsOwnConstraintsOutAndKeepsTheOthers) {
     // The lens hides layer 0 and everything nearer than 7.5; its histogram still shows them all.
     LensStack stack;
     stack.add(pluginLens("layer", region, {{"layers", "1-"}, {"distance", "7.5"}}));
-    const DepthHistogram alone = computeDepthHistogram(tracer, depthHistogramRequest(stack, 0, {}, camera, kWidth, kHeight));
+    const DepthHistogram alone = computeDepthHistogram(tracer, depthHistogramRequest(tracer, stack, 0, {}, camera, kWidth, kHeight));
     ASSERT_NE(alone.layer(0), nullptr);
     EXPECT_LT(alone.layer(0)->nearest, 7.5f);
     EXPECT_FALSE(alone.suggestions.empty());
@@ -295,7 +295,7 @@ TEST(DepthHistogram, LensInAStackLeavesItsOwnConstraintsOutAndKeepsTheOthers) {
     // Another lens over the whole image hides layer 0 from primary rays: so does the histogram.
     stack.add(pluginLens("layer", LensRegion::rectangle({0.5f, 0.5f}, {1.f, 1.f}), {{"layers", "1-"}, {"rays", "primary"}}));
     const DepthHistogram underAnother =
-        computeDepthHistogram(tracer, depthHistogramRequest(stack, 0, {}, camera, kWidth, kHeight));
+        computeDepthHistogram(tracer, depthHistogramRequest(tracer, stack, 0, {}, camera, kWidth, kHeight));
     EXPECT_EQ(underAnother.layer(0), nullptr);
     ASSERT_NE(underAnother.layer(1), nullptr);
     EXPECT_EQ(underAnother.layer(1)->crossings, alone.layer(1)->crossings);
@@ -307,8 +307,8 @@ TEST(DepthHistogram, LensInAStackLeavesItsOwnConstraintsOutAndKeepsTheOthers) {
     ASSERT_EQ(onlyInner.layers.size(), 1u);
     EXPECT_EQ(onlyInner.layers[0].layer, 1);
 
-    EXPECT_THROW(depthHistogramRequest(stack, 2, {}, camera, kWidth, kHeight), Error);
-    EXPECT_THROW(depthHistogramRequest(stack, 0, {}, camera, 0, kHeight), Error);
+    EXPECT_THROW(depthHistogramRequest(tracer, stack, 2, {}, camera, kWidth, kHeight), Error);
+    EXPECT_THROW(depthHistogramRequest(tracer, stack, 0, {}, camera, 0, kHeight), Error);
 }
 
 TEST(DepthHistogram, EmptyRegionsAndMissesGiveAnEmptyHistogram) {

@@ -32,6 +32,8 @@ tbb::task_arena &workerArena(int threads) {
     return *arena;
 }
 
+} // namespace detail
+
 void runParallelChunks(std::size_t count, int threads, std::size_t grain, ChunkFunction function,
                        void *context) {
     if (count == 0) return;
@@ -43,7 +45,7 @@ void runParallelChunks(std::size_t count, int threads, std::size_t grain, ChunkF
     }
     // simple_partitioner: chunks of at most `grain` items, split the same way whatever the
     // thread count, so callers control the granularity (a tile, a row band).
-    workerArena(threads).execute([&] {
+    detail::workerArena(threads).execute([&] {
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, count, grain),
             [&](const tbb::blocked_range<std::size_t> &r) { function(context, r.begin(), r.end()); },
@@ -51,5 +53,4 @@ void runParallelChunks(std::size_t count, int threads, std::size_t grain, ChunkF
     });
 }
 
-} // namespace detail
 } // namespace mvcl

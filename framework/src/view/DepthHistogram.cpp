@@ -10,6 +10,7 @@
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/Tracer.h>
 #include <mvcl/view/Picking.h>
+#include <mvcl/view/ViewLensContext.h>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -111,8 +112,8 @@ const LayerDepths *DepthHistogram::layer(int id) const {
     return nullptr;
 }
 
-DepthHistogramRequest depthHistogramRequest(const LensStack &stack, int lensIndex, const RayPolicy &base,
-                                            const Camera &camera, int width, int height,
+DepthHistogramRequest depthHistogramRequest(const Tracer &tracer, const LensStack &stack, int lensIndex,
+                                            const RayPolicy &base, const Camera &camera, int width, int height,
                                             const DepthHistogramSettings &settings) {
     const std::shared_ptr<Lens> &lens = stack.lens(lensIndex);
     if (width <= 0 || height <= 0) throw Error(kSource, "the image size must be positive");
@@ -127,7 +128,9 @@ DepthHistogramRequest depthHistogramRequest(const LensStack &stack, int lensInde
     // every other lens over a pixel still shapes and constrains that pixel's ray.
     LensStack others = stack;
     others.remove(lensIndex);
-    if (!others.isEmpty()) request.surroundings = std::make_shared<const PolicyMap>(others.compose(base, width, height));
+    if (!others.isEmpty())
+        request.surroundings = std::make_shared<const PolicyMap>(
+            others.compose(lensContextOf(tracer.scene(), camera, width, height), base));
     return request;
 }
 

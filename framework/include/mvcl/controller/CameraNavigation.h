@@ -4,6 +4,8 @@
 /// about the target, pan, zoom about a point, frame everything, preset views. The Controller
 /// maps pointer and key input onto them; they keep the camera's up vector and field of view.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/core/Bounds3.h>
 #include <mvcl/view/Camera.h>
 
@@ -24,26 +26,26 @@ enum class ViewPreset : uint8_t {
     Bottom, ///< from −y, +z up on screen
 };
 
-const char *viewPresetName(ViewPreset preset);
+MVCL_EXPORT const char *viewPresetName(ViewPreset preset);
 
 /// Turntable orbit: the eye turns about the target by `yawRadians` about the camera's up
 /// vector and by `pitchRadians` toward the up vector (positive: the eye rises). The distance to
 /// the target does not change; the pitch stops short of the poles so the view never flips.
-Camera orbitCamera(const Camera &camera, float yawRadians, float pitchRadians);
+MVCL_EXPORT Camera orbitCamera(const Camera &camera, float yawRadians, float pitchRadians);
 
 /// Moves eye and target together so that points at the target's depth follow a pointer moved
 /// by `pixelOffset` (x right, y down) in a view `viewSize` pixels large.
-Camera panCamera(const Camera &camera, const glm::vec2 &pixelOffset, const glm::ivec2 &viewSize);
+MVCL_EXPORT Camera panCamera(const Camera &camera, const glm::vec2 &pixelOffset, const glm::ivec2 &viewSize);
 
 /// Scales the camera about `anchor` (scene space): eye and target move toward it by `factor`
 /// (< 1 zooms in, > 1 out). The anchor keeps its place in the image, so a point under the
 /// pointer stays under it.
-Camera zoomCamera(const Camera &camera, float factor, const glm::vec3 &anchor);
+MVCL_EXPORT Camera zoomCamera(const Camera &camera, float factor, const glm::vec3 &anchor);
 
 /// The same view direction, up and field of view, at the distance that fits all of `bounds`.
-Camera framedCamera(const Camera &camera, const Bounds3f &bounds, float aspect);
+MVCL_EXPORT Camera framedCamera(const Camera &camera, const Bounds3f &bounds, float aspect);
 
 /// A preset direction framing all of `bounds`, with the camera's field of view.
-Camera presetCamera(const Camera &camera, ViewPreset preset, const Bounds3f &bounds, float aspect);
+MVCL_EXPORT Camera presetCamera(const Camera &camera, ViewPreset preset, const Bounds3f &bounds, float aspect);
 
 } // namespace mvcl

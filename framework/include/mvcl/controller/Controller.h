@@ -42,6 +42,8 @@
 /// caller to go to — from handle() (a broken dropped file) and from writing the recovery copy —
 /// go to the error callback; without one they are thrown.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/controller/CameraNavigation.h>
 #include <mvcl/controller/InputEvent.h>
 #include <mvcl/controller/LensHandle.h>
@@ -89,7 +91,7 @@ struct LensHit {
 /// The gesture in progress.
 enum class DragKind : uint8_t { None, MoveLens, ResizeLens, Orbit, Pan };
 
-class Controller {
+class MVCL_EXPORT Controller {
 public:
     /// Sets up the view as ViewSetup does (scene, camera, lenses, layer rules) at the size and
     /// with the sampling of `settings`, and builds the scene's tracer and RenderSession.
@@ -231,7 +233,7 @@ public:
     void setSceneChangedCallback(std::function<void()> callback);
 
 private:
-    struct Private;
+    struct MVCL_HIDDEN Private;
     std::unique_ptr<Private> d;
 };
 

@@ -5,6 +5,8 @@
 /// pixels of the view, (0, 0) at the top-left corner, x right, y down: the pixels the image is
 /// rendered in, not the window system's screen coordinates (which differ on high-DPI displays).
 
+#include <mvcl/core/Export.h>
+
 #include <glm/vec2.hpp>
 
 #include <cstdint>
@@ -39,7 +41,7 @@ enum class Key : uint8_t {
     Home, PageUp, PageDown, Delete, Backspace, Escape,
 };
 
-struct InputEvent {
+struct MVCL_EXPORT InputEvent {
     enum class Type : uint8_t {
         PointerPress,
         PointerMove,

@@ -4,6 +4,8 @@
 /// box of a rectangle or ellipse, and every vertex of a polygon. Positions are in normalised
 /// image coordinates, like the region; the viewer draws them where the controller hit-tests.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/LensRegion.h>
 
 #include <glm/vec2.hpp>
@@ -13,7 +15,7 @@
 
 namespace mvcl {
 
-struct LensHandle {
+struct MVCL_EXPORT LensHandle {
     enum class Kind : uint8_t {
         Corner, ///< index 0 top-left, 1 top-right, 2 bottom-right, 3 bottom-left
         Edge,   ///< midpoint; index 0 top, 1 right, 2 bottom, 3 left

@@ -5,6 +5,8 @@
 /// rather than lens objects, so a restored lens is built afresh from text exactly as a
 /// session file builds it.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/LensRegion.h>
 
 #include <memory>
@@ -17,7 +19,7 @@ namespace mvcl {
 class Lens;
 class LensRegistry;
 
-struct LensState {
+struct MVCL_EXPORT LensState {
     std::string type;
     std::string label;
     bool enabled = true;

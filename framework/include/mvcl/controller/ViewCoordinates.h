@@ -7,6 +7,8 @@
 /// - world space (cameras in session files and on the command line, in the file's units),
 /// - scene space (what the tracer and mvcl::Camera work in: world minus Scene::worldOrigin).
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/io/LensStackFile.h>
 #include <mvcl/view/Camera.h>
 
@@ -17,7 +19,7 @@ namespace mvcl {
 
 struct Scene;
 
-class ViewCoordinates {
+class MVCL_EXPORT ViewCoordinates {
 public:
     ViewCoordinates() = default;
     /// `viewSize` in framebuffer pixels (each side ≥ 1); `worldOrigin` of the scene shown.

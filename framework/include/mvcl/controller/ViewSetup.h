@@ -12,6 +12,8 @@
 /// 4. describe(): the effective session (scene, world camera, merged rules, visible layers,
 ///    lenses) for saving, in the session-file format.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/controller/ViewRequest.h>
 #include <mvcl/io/LensStackFile.h>
 #include <mvcl/io/SceneLoader.h>
@@ -23,7 +25,7 @@ namespace mvcl {
 
 class LensRegistry;
 
-struct ViewSetup {
+struct MVCL_EXPORT ViewSetup {
     /// The scene to load: model path or builtin:NAME (a relative path in a session file comes
     /// resolved against the file's folder).
     std::string source;

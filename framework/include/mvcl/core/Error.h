@@ -3,13 +3,15 @@
 /// The one exception type of mvcl: configuration errors, bad input files, API misuse.
 /// The render path never throws.
 
+#include <mvcl/core/Export.h>
+
 #include <stdexcept>
 #include <string>
 
 namespace mvcl {
 
 /// An error a user can act on. `what()` is one line: "<source>: <problem>".
-class Error : public std::runtime_error {
+class MVCL_EXPORT Error : public std::runtime_error {
 public:
     /// \param source the file, plugin or option the problem is in (may be empty)
     /// \param problem what is wrong, phrased for the user

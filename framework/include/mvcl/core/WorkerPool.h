@@ -5,19 +5,21 @@
 /// that overlap share the cores instead of oversubscribing them. oneTBB's scheduler is
 /// underneath; nothing of it shows in this header.
 
+#include <mvcl/core/Export.h>
+
 #include <cstddef>
 #include <type_traits>
 
 namespace mvcl {
 
 /// Threads a loop asked for 0 threads uses: the machine's cores (at least 1).
-int workerThreadCount();
+MVCL_EXPORT int workerThreadCount();
 
-namespace detail {
+/// The type-erased loop under parallelForChunks(): public because the template calls it, not
+/// meant to be called directly.
 using ChunkFunction = void (*)(void *context, std::size_t begin, std::size_t end);
-void runParallelChunks(std::size_t count, int threads, std::size_t grain, ChunkFunction function,
+MVCL_EXPORT void runParallelChunks(std::size_t count, int threads, std::size_t grain, ChunkFunction function,
                        void *context);
-} // namespace detail
 
 /// Calls body(begin, end) for chunks of [0, count) of at most `grain` items (≥ 1), on at most
 /// `threads` threads (0 = all cores; the calling thread works too) and returns when all are
@@ -27,7 +29,7 @@ void runParallelChunks(std::size_t count, int threads, std::size_t grain, ChunkF
 template <class Body>
 void parallelForChunks(std::size_t count, int threads, std::size_t grain, Body &&body) {
     using B = std::remove_reference_t<Body>;
-    detail::runParallelChunks(
+    runParallelChunks(
         count, threads, grain,
         [](void *context, std::size_t begin, std::size_t end) { (*static_cast<B *>(context))(begin, end); },
         const_cast<void *>(static_cast<const void *>(&body)));

@@ -19,6 +19,8 @@
 /// that hide nothing read the same in builds that predate it. Unknown keys anywhere are an error naming the
 /// file and the JSON path; property values are read with the property's own declaration.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/LensStack.h>
 #include <mvcl/model/LayerContact.h>
 #include <mvcl/model/LayerRules.h>
@@ -61,27 +63,27 @@ struct LensStackDescription {
 };
 
 /// Equal scene, camera, rules, visible layers and lenses (type, label, committed enabled/region/properties).
-bool operator==(const LensStackDescription &a, const LensStackDescription &b);
+MVCL_EXPORT bool operator==(const LensStackDescription &a, const LensStackDescription &b);
 
 /// Reads and commits a lens-stack file; a relative scene path comes back resolved against the
 /// file's folder. Throws mvcl::Error(path, "json.path: problem").
-LensStackDescription readLensStackFile(const std::filesystem::path &path,
+MVCL_EXPORT LensStackDescription readLensStackFile(const std::filesystem::path &path,
                                        const LensRegistry &registry);
 /// The same from text; errors name `sourceName` in place of a file.
-LensStackDescription parseLensStackJson(std::string_view text, const std::string &sourceName,
+MVCL_EXPORT LensStackDescription parseLensStackJson(std::string_view text, const std::string &sourceName,
                                         const LensRegistry &registry);
 
 /// The file's text: every lens with its committed state, property values in canonical text.
-std::string lensStackJson(const LensStackDescription &description);
+MVCL_EXPORT std::string lensStackJson(const LensStackDescription &description);
 /// Writes a scene file path relative to the file's folder, and writes atomically (a temporary
 /// file in the same folder, then rename), so a failed write
 /// leaves an existing file as it was. Throws mvcl::Error(path, problem).
-void writeLensStackFile(const std::filesystem::path &path, const LensStackDescription &description);
+MVCL_EXPORT void writeLensStackFile(const std::filesystem::path &path, const LensStackDescription &description);
 
 /// One lens from the command line: "type:key=value,key=value" where a key is a property of the
 /// lens or a region key (shape, center, size, points, feather, outline, outlineColor) or label,
 /// enabled. Values with commas are bracketed ("center=[0.3,0.5]", "layers=[1,2]"). Returns the
 /// lens committed; throws mvcl::Error("--lens", problem naming the spec and the key).
-std::shared_ptr<Lens> parseLensSpec(std::string_view spec, const LensRegistry &registry);
+MVCL_EXPORT std::shared_ptr<Lens> parseLensSpec(std::string_view spec, const LensRegistry &registry);
 
 } // namespace mvcl

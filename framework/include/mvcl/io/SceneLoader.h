@@ -4,6 +4,8 @@
 /// infers the layers nobody assigned, and gives model files without lights a default light rig
 /// (unless told not to), and sets the scene's layer contact tolerance.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/model/LayerContact.h>
 #include <mvcl/model/LayerRules.h>
 #include <mvcl/model/Scene.h>
@@ -29,6 +31,6 @@ struct SceneLoadOptions {
 };
 
 /// Throws mvcl::Error naming the source and the problem.
-Scene loadScene(std::string_view source, const SceneLoadOptions &options = {});
+MVCL_EXPORT Scene loadScene(std::string_view source, const SceneLoadOptions &options = {});
 
 } // namespace mvcl

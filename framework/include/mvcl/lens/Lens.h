@@ -14,6 +14,8 @@
 /// own context, which re-runs contribute() on the committed values only when the context
 /// differs in what the lens depends on (the scene always, the view if LensInfo::dependsOnView).
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/LensContext.h>
 #include <mvcl/lens/LensContribution.h>
 #include <mvcl/lens/LensInfo.h>
@@ -42,7 +44,7 @@ struct LensSnapshot {
 
 class LensPrivate;
 
-class Lens {
+class MVCL_EXPORT Lens {
 public:
     /// `info` is copied. The lens starts on its defaults, uncommitted (snapshot disabled).
     explicit Lens(const LensInfo &info);

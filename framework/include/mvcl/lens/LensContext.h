@@ -12,6 +12,8 @@
 /// - view space: the camera's frame, origin at the eye, x right, y up, z toward the viewer
 ///   (the camera looks along −z), in scene units.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/core/Bounds3.h>
 #include <mvcl/model/CameraDesc.h>
 #include <mvcl/model/LayerTable.h>
@@ -30,7 +32,7 @@ enum class PropertySpace : uint8_t {
     View,  ///< the camera's frame (see LensContext.h): follows the camera
 };
 
-const char *propertySpaceName(PropertySpace space);
+MVCL_EXPORT const char *propertySpaceName(PropertySpace space);
 
 /// An axis-aligned box in double precision, as a box3 property holds it.
 struct Box3d {
@@ -39,7 +41,7 @@ struct Box3d {
     bool operator==(const Box3d &other) const = default;
 };
 
-struct LensContext {
+struct MVCL_EXPORT LensContext {
     /// Scene space. The default is the camera of a view not known yet.
     CameraDesc camera;
     int imageWidth = 0;  ///< px; 0 when no view is known yet

@@ -5,6 +5,8 @@
 /// The lens stack folds contributions onto the base policy (see PolicyComposition.h); the
 /// renderer never calls into a lens.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/tracer/RayPolicy.h>
 
 #include <glm/mat3x3.hpp>
@@ -16,7 +18,7 @@
 namespace mvcl {
 
 /// Shading fields a lens sets; unset fields leave what lies below. Upper lenses override.
-struct ShadingOverride {
+struct MVCL_EXPORT ShadingOverride {
     std::optional<bool> shadows;
     std::optional<float> shadowStrength;
     std::optional<glm::vec3> shadowTint;
@@ -35,7 +37,7 @@ struct ShadingOverride {
     bool operator==(const ShadingOverride &other) const = default;
 };
 
-struct LensContribution {
+struct MVCL_EXPORT LensContribution {
     /// Ray shaping: maps the pixel's normalised screen position (x right, y down, 0..1) to the
     /// position its primary ray is shot through, as a 2D affine map in homogeneous form.
     /// Identity = no shaping. A magnifier scales about the lens centre.

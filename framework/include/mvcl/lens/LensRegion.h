@@ -4,6 +4,8 @@
 /// coordinates (x right, y down, both 0..1, so a lens file works at any resolution), with an
 /// optional feathered edge and outline in pixels (the lens's "join" with the outside).
 
+#include <mvcl/core/Export.h>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -19,7 +21,7 @@ struct PixelRect {
     bool isEmpty() const { return x0 >= x1 || y0 >= y1; }
 };
 
-class LensRegion {
+class MVCL_EXPORT LensRegion {
 public:
     enum class Shape : uint8_t { Rectangle, Ellipse, Polygon };
 

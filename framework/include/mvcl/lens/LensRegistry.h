@@ -4,6 +4,8 @@
 /// statically and registered explicitly. A module that is broken or built against another ABI
 /// is reported with a clear error and skipped; it never takes the app down.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/core/Error.h>
 #include <mvcl/lens/Lens.h>
 
@@ -19,7 +21,7 @@ namespace mvcl {
 
 class LensRegistryPrivate;
 
-class LensRegistry {
+class MVCL_EXPORT LensRegistry {
 public:
     LensRegistry();
     ~LensRegistry();

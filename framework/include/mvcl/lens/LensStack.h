@@ -5,6 +5,8 @@
 /// set (per feathered term) and never per pixel, and pixels outside every lens keep the base
 /// policy without any work.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/Lens.h>
 #include <mvcl/lens/PolicyCost.h>
 #include <mvcl/lens/PolicyMap.h>
@@ -27,7 +29,7 @@ struct LensCost {
     double milliseconds = 0.0;
 };
 
-class LensStack {
+class MVCL_EXPORT LensStack {
 public:
     /// A stack holds at most this many lenses (one bit each in PixelPolicy::lensSet).
     static constexpr int kMaxLenses = 64;

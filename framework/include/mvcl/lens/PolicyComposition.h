@@ -6,6 +6,8 @@
 ///   shading      — the upper lens overrides the fields it sets;
 ///   colour       — function composition bottom → top (upper ∘ lower).
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/LensContribution.h>
 #include <mvcl/lens/PixelPolicy.h>
 
@@ -17,14 +19,14 @@ namespace mvcl {
 /// the same normal and keep); any of `b`'s that still do not fit are left out and counted in
 /// `*droppedClips`. Never throws: composition runs on the render path, and LensStack::compose
 /// reports the count as PolicyMap::droppedClipVolumes().
-RayQuery intersectQueries(const RayQuery &a, const RayQuery &b, int *droppedClips = nullptr);
+MVCL_EXPORT RayQuery intersectQueries(const RayQuery &a, const RayQuery &b, int *droppedClips = nullptr);
 
 /// Colour map that applies `lower` first, then `upper`.
-ColorPolicy composeColor(const ColorPolicy &lower, const ColorPolicy &upper);
+MVCL_EXPORT ColorPolicy composeColor(const ColorPolicy &lower, const ColorPolicy &upper);
 
 /// `below` with `lens` applied on top of it.
 /// Clip volumes that do not fit are counted in `*droppedClips` (see intersectQueries).
-PixelPolicy applyContribution(const PixelPolicy &below, const LensContribution &lens,
+MVCL_EXPORT PixelPolicy applyContribution(const PixelPolicy &below, const LensContribution &lens,
                               int *droppedClips = nullptr);
 
 } // namespace mvcl

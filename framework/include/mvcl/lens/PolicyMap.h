@@ -5,6 +5,8 @@
 /// outside them a pixel has one term of weight 1; on a feathered edge it blends the policies
 /// with and without the lens, and the renderer blends their radiance with those weights.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/PixelPolicy.h>
 
 #include <cstddef>
@@ -19,7 +21,7 @@ struct PolicyTerm {
     float weight = 1.f;
 };
 
-class PolicyMap {
+class MVCL_EXPORT PolicyMap {
 public:
     /// Every pixel starts on `base` (entry 0).
     explicit PolicyMap(int width, int height, const PixelPolicy &base = {});

@@ -3,6 +3,8 @@
 /// Which pixels of a view render differently under two policy maps: after a lens edit an
 /// incremental renderer traces only those again.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/LensRegion.h>
 #include <mvcl/lens/PolicyMap.h>
 
@@ -19,7 +21,7 @@ namespace mvcl {
 /// one mask; `changed` is enlarged to width × height entries (new ones 0) if it is smaller.
 /// Runs on at most `threads` threads of the worker pool (0 = all cores). Throws mvcl::Error
 /// when the maps differ in size.
-void markChangedPixels(const PolicyMap &before, const PolicyMap &after, const PixelRect &area,
+MVCL_EXPORT void markChangedPixels(const PolicyMap &before, const PolicyMap &after, const PixelRect &area,
                        std::vector<uint8_t> &changed, int threads = 0);
 
 } // namespace mvcl

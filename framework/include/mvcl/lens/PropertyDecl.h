@@ -4,6 +4,8 @@
 /// files, the command line, generated UI, the docs and the conformance tests (Mitsuba/OSPRay
 /// style). A plugin lists its declarations in a PropertyTable at the top of its one source file.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/PropertyValue.h>
 
 #include <limits>
@@ -13,7 +15,7 @@
 
 namespace mvcl {
 
-struct PropertyDecl {
+struct MVCL_EXPORT PropertyDecl {
     std::string name;  ///< lowerCamelCase key used in files and on the command line
     PropertyType type = PropertyType::Bool;
     PropertyValue defaultValue;
@@ -60,6 +62,6 @@ struct PropertyDecl {
 using PropertyTable = std::vector<PropertyDecl>;
 
 /// The declaration named `name` in `table`, or nullptr.
-const PropertyDecl *findProperty(const PropertyTable &table, std::string_view name);
+MVCL_EXPORT const PropertyDecl *findProperty(const PropertyTable &table, std::string_view name);
 
 } // namespace mvcl

@@ -3,6 +3,8 @@
 /// One typed value of a lens property. Every type has a canonical text form (toString) that
 /// PropertyDecl::parse reads back, so files, the command line and round-trip tests share it.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/LensContext.h>
 #include <mvcl/tracer/RayPolicy.h>
 
@@ -31,9 +33,9 @@ enum class PropertyType : uint8_t {
                 ///< rows of [R | t] ("r00,r01,r02,t0,r10,r11,r12,t1,r20,r21,r22,t2")
 };
 
-const char *propertyTypeName(PropertyType type);
+MVCL_EXPORT const char *propertyTypeName(PropertyType type);
 
-class PropertyValue {
+class MVCL_EXPORT PropertyValue {
 public:
     PropertyValue() = default; ///< Bool false
 
@@ -84,10 +86,10 @@ private:
 };
 
 /// Text helpers shared by the parser and by tools that print masks.
-std::string layerSetToString(uint32_t mask);
+MVCL_EXPORT std::string layerSetToString(uint32_t mask);
 /// Throws mvcl::Error("", problem) on malformed text.
-uint32_t parseLayerSet(const std::string &text);
-std::string rayTypeSetToString(uint8_t mask);
-uint8_t parseRayTypeSet(const std::string &text);
+MVCL_EXPORT uint32_t parseLayerSet(const std::string &text);
+MVCL_EXPORT std::string rayTypeSetToString(uint8_t mask);
+MVCL_EXPORT uint8_t parseRayTypeSet(const std::string &text);
 
 } // namespace mvcl

@@ -4,6 +4,8 @@
 /// it remembers which names were read so the conformance suite can report parameters a lens
 /// declares but never uses (Mitsuba's "unreferenced property" check).
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/PropertyDecl.h>
 
 #include <string>
@@ -12,7 +14,7 @@
 
 namespace mvcl {
 
-class PropertyValues {
+class MVCL_EXPORT PropertyValues {
 public:
     /// `values[i]` belongs to `table[i]`; both must outlive this object.
     PropertyValues(const PropertyTable &table, const std::vector<PropertyValue> &values);

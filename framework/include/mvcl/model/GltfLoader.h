@@ -2,6 +2,8 @@
 /// \file GltfLoader.h
 /// glTF 2.0 (.gltf / .glb) → Scene, with our own validation on top of tinygltf.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/model/LayerRules.h>
 #include <mvcl/model/Scene.h>
 
@@ -27,11 +29,11 @@ struct GltfLoadOptions {
 /// Loads a glTF file. Meshes get their layer from `extras.layer` (node, then mesh), then from
 /// the rules; the rest stay LayerSource::Unassigned for SceneLoader's containment inference.
 /// Throws mvcl::Error naming the file and the problem for anything invalid.
-Scene loadGltf(const std::filesystem::path &path, const GltfLoadOptions &options = {});
+MVCL_EXPORT Scene loadGltf(const std::filesystem::path &path, const GltfLoadOptions &options = {});
 
 /// Same, from memory (fuzzing, tests). `name` is used in error messages; external resources are
 /// resolved relative to `baseDir` and may not leave it.
-Scene loadGltfFromMemory(std::span<const std::uint8_t> bytes, const std::string &name,
+MVCL_EXPORT Scene loadGltfFromMemory(std::span<const std::uint8_t> bytes, const std::string &name,
                          const std::filesystem::path &baseDir, const GltfLoadOptions &options = {});
 
 } // namespace mvcl

@@ -8,6 +8,8 @@
 /// priority within the error bound of the intersection test, which is all that equal
 /// tessellations need.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/core/Bounds3.h>
 
 #include <cstdint>
@@ -15,7 +17,7 @@
 
 namespace mvcl {
 
-struct LayerContact {
+struct MVCL_EXPORT LayerContact {
     enum class Measure : uint8_t {
         RelativeToSceneSize, ///< a fraction of the diagonal of the scene's bounds
         SceneUnits,          ///< a distance in scene (= world) units

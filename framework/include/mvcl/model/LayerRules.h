@@ -4,6 +4,8 @@
 /// From a JSON file: {"rules": [{"match": "*skin*", "layer": 0}, ...]}
 /// or from a CLI string: "*skin*=0;*bone*=1".
 
+#include <mvcl/core/Export.h>
+
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -17,7 +19,7 @@ struct LayerRule {
     int layer = 0;
 };
 
-class LayerRules {
+class MVCL_EXPORT LayerRules {
 public:
     void add(LayerRule rule);
     const std::vector<LayerRule> &rules() const { return m_rules; }
@@ -38,6 +40,6 @@ private:
 };
 
 /// Glob match with `*` and `?`.
-bool globMatch(std::string_view pattern, std::string_view text);
+MVCL_EXPORT bool globMatch(std::string_view pattern, std::string_view text);
 
 } // namespace mvcl

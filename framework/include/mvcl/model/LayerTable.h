@@ -3,6 +3,8 @@
 /// The layers of a scene: 0 is the outermost (skin, housing), higher ids lie deeper inside.
 /// A ray's layer mask has bit `id` set for each layer it may hit, so there are at most 32.
 
+#include <mvcl/core/Export.h>
+
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -28,7 +30,7 @@ struct Layer {
     glm::vec3 color{1.f};
 };
 
-class LayerTable {
+class MVCL_EXPORT LayerTable {
 public:
     /// Returns the layer with `id`, adding it (with a generated name and colour) if missing.
     /// Throws mvcl::Error if id is outside [0, kMaxLayers).

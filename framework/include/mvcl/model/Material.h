@@ -6,6 +6,8 @@
 /// refraction. Materials that come from glTF keep their metallic-roughness parameters and texture
 /// references too, so that textures can vary the Phong terms per hit (MetallicRoughness.h).
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/model/TextureRef.h>
 
 #include <glm/vec3.hpp>
@@ -36,7 +38,7 @@ struct MetallicRoughness {
     TextureRef emissiveTexture;          ///< sRGB; × emission
 };
 
-struct Material {
+struct MVCL_EXPORT Material {
     std::string name;
     /// A: ambient reflectance, multiplied by the scene's ambient light. Linear RGB, 0..1.
     glm::vec3 ambient{0.8f};

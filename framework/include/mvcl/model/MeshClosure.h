@@ -3,6 +3,8 @@
 /// Whether a triangle mesh bounds a solid, which is what lets a clip volume draw a cap where it
 /// cuts through the mesh instead of showing a hollow shell.
 
+#include <mvcl/core/Export.h>
+
 #include <cstdint>
 
 namespace mvcl {
@@ -23,6 +25,6 @@ enum class MeshClosure : uint8_t {
 /// and texture seams); triangles with two welded corners equal have no area and are ignored.
 /// Closed = every welded edge is used exactly once in each direction, and the enclosed volume
 /// is not zero. The glTF loader and the built-in scenes call it; a scene built by hand can too.
-void recordMeshClosure(Scene &scene);
+MVCL_EXPORT void recordMeshClosure(Scene &scene);
 
 } // namespace mvcl

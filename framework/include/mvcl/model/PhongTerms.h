@@ -4,6 +4,8 @@
 /// integrator (textured values per hit). docs/gltf-loading.md shows it on a metallic × roughness
 /// grid.
 
+#include <mvcl/core/Export.h>
+
 #include <glm/vec3.hpp>
 
 namespace mvcl {
@@ -27,6 +29,6 @@ struct PhongTerms {
 ///   reflectivity   = m · (1 − r)                   smooth metals mirror the scene and background
 /// A rough metal keeps a broad highlight (Ps → 1) of its base colour, so a lit surface is never
 /// black unless its base colour is black and it is a rough metal in the dark.
-PhongTerms phongFromMetallicRoughness(glm::vec3 baseColor, float metallic, float roughness);
+MVCL_EXPORT PhongTerms phongFromMetallicRoughness(glm::vec3 baseColor, float metallic, float roughness);
 
 } // namespace mvcl

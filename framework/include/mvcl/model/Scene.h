@@ -4,6 +4,8 @@
 /// All geometry is in *scene space* = world space minus `worldOrigin`. Loaders re-centre in double
 /// before converting to float so that models far from the world origin keep their precision.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/core/Bounds3.h>
 #include <mvcl/model/CameraDesc.h>
 #include <mvcl/model/LayerContact.h>
@@ -33,7 +35,7 @@ struct LoadReport {
     std::size_t textureBytes = 0;      ///< memory held by decoded images and their mip chains
 };
 
-struct Scene {
+struct MVCL_EXPORT Scene {
     std::string name; ///< file path or "builtin:<name>"
     std::vector<TriangleMesh> meshes;
     std::vector<Sphere> spheres;

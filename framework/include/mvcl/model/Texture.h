@@ -4,6 +4,8 @@
 /// (Texture). Texels are stored as 8-bit RGBA as decoded; sRGB textures (base colour, emission)
 /// are turned linear per texel before filtering.
 
+#include <mvcl/core/Export.h>
+
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
@@ -35,7 +37,7 @@ struct TextureSampler {
 enum class TextureColorSpace : uint8_t { Linear, Srgb };
 
 /// An RGBA8 image and its box-filtered mip chain down to 1×1.
-class TextureImage {
+class MVCL_EXPORT TextureImage {
 public:
     /// `rgba` holds width·height·4 bytes, rows top to bottom (glTF's uv (0, 0) is the top left).
     /// The levels of an sRGB image average in linear light (a distant black-and-white checker
@@ -72,7 +74,7 @@ private:
 
 /// A texture as a material uses it: an image (shared between textures that differ only in their
 /// sampler) and its sampler.
-struct Texture {
+struct MVCL_EXPORT Texture {
     std::string name;
     std::shared_ptr<const TextureImage> image;
     TextureSampler sampler;

@@ -3,11 +3,13 @@
 /// A material's use of a texture: which one, which texture coordinates, and glTF's
 /// KHR_texture_transform.
 
+#include <mvcl/core/Export.h>
+
 #include <glm/vec2.hpp>
 
 namespace mvcl {
 
-struct TextureRef {
+struct MVCL_EXPORT TextureRef {
     /// Index into Scene::textures, or −1 for none.
     int texture = -1;
     /// Which TriangleMesh texture coordinates to use: 0 (TEXCOORD_0) or 1 (TEXCOORD_1).

@@ -6,6 +6,8 @@
 /// their facets' sagitta; equal triangulations need no tolerance (the tracer's layer priority
 /// within the error bound covers them).
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/model/LayerContact.h>
 
 #include <cstddef>
@@ -45,6 +47,6 @@ struct LayerContactProbeSettings {
 /// Probes through the centroids of each mesh's triangles along the face normal for the nearest
 /// surface of another layer within reach on either side (a coincident one included).
 /// Deterministic; a few queries per sample.
-LayerContactReport probeLayerContacts(const Tracer &tracer, const LayerContactProbeSettings &settings = {});
+MVCL_EXPORT LayerContactReport probeLayerContacts(const Tracer &tracer, const LayerContactProbeSettings &settings = {});
 
 } // namespace mvcl

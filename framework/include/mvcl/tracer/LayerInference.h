@@ -7,6 +7,8 @@
 /// "mostly hidden", hence deeper); a mesh is enclosed when at least `enclosedFraction` of its
 /// samples are. Each inferred mesh gets a confidence (TriangleMesh::layerConfidence).
 
+#include <mvcl/core/Export.h>
+
 #include <cstddef>
 
 namespace mvcl {
@@ -32,6 +34,6 @@ struct LayerInferenceResult {
 
 /// Assigns a layer to every mesh with LayerSource::Unassigned (the others are kept as they are
 /// and act as occluders), and adds the layers to the scene's table.
-LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInferenceSettings &settings = {});
+MVCL_EXPORT LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInferenceSettings &settings = {});
 
 } // namespace mvcl

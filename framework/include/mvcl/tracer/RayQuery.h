@@ -3,6 +3,8 @@
 /// What a single trace may hit: a t-range, a layer mask and clip volumes. Plain data: the tracer
 /// applies it inside traversal without any virtual call.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/model/LayerTable.h>
 
 #include <glm/vec3.hpp>
@@ -16,7 +18,7 @@ namespace mvcl {
 
 /// A region of scene space whose hits are discarded (a cut) or kept exclusively. Made by one of
 /// the factories; the accessors name what each shape stores.
-class ClipVolume {
+class MVCL_EXPORT ClipVolume {
 public:
     enum class Shape : uint8_t {
         Box,       ///< axis-aligned box [boxMin, boxMax]
@@ -95,7 +97,7 @@ private:
 
 inline constexpr int kMaxClipVolumes = 8;
 
-struct RayQuery {
+struct MVCL_EXPORT RayQuery {
     /// Hits with t < tMin or t > tMax are ignored (t in units of the ray direction's length).
     float tMin = 0.f;
     float tMax = std::numeric_limits<float>::infinity();

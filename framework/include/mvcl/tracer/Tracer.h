@@ -5,6 +5,8 @@
 /// queries that honour a RayQuery inside traversal. Build once (the constructor); queries are
 /// const and thread-safe.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/tracer/Hit.h>
 #include <mvcl/tracer/Ray.h>
 #include <mvcl/tracer/RayQuery.h>
@@ -35,7 +37,7 @@ struct TracerBuildStats {
     std::size_t memoryBytes = 0;
 };
 
-class Tracer {
+class MVCL_EXPORT Tracer {
 public:
     /// Builds the acceleration structure. The scene must outlive the tracer and not change.
     explicit Tracer(const Scene &scene, const TracerSettings &settings = {});
@@ -58,7 +60,7 @@ public:
     const TracerBuildStats &buildStats() const;
 
 private:
-    struct Private;
+    struct MVCL_HIDDEN Private;
     std::unique_ptr<Private> d;
 };
 

@@ -3,6 +3,8 @@
 /// Watertight ray/triangle test (Woop, Benthin & Wald 2013, as in pbrt-v4): no ray passes between
 /// two triangles sharing an edge or a vertex. Exposed for tests; the tracer uses the same code.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/tracer/Ray.h>
 
 #include <glm/vec3.hpp>
@@ -20,7 +22,7 @@ struct TriangleHit {
 };
 
 /// Per-ray constants of the watertight test (permutation and shear), computed once per ray.
-struct WatertightRay {
+struct MVCL_EXPORT WatertightRay {
     int kx, ky, kz;
     float sx, sy, sz;
     glm::vec3 origin;
@@ -28,11 +30,11 @@ struct WatertightRay {
 };
 
 /// Hit with tMin < t < tMax (the lower bound is conservative so t > 0 is guaranteed when tMin = 0).
-bool intersectTriangle(const WatertightRay &ray, const glm::vec3 &p0, const glm::vec3 &p1,
+MVCL_EXPORT bool intersectTriangle(const WatertightRay &ray, const glm::vec3 &p0, const glm::vec3 &p1,
                        const glm::vec3 &p2, float tMin, float tMax, TriangleHit &hit);
 
 /// Convenience overload building the WatertightRay.
-bool intersectTriangle(const Ray &ray, const glm::vec3 &p0, const glm::vec3 &p1,
+MVCL_EXPORT bool intersectTriangle(const Ray &ray, const glm::vec3 &p0, const glm::vec3 &p1,
                        const glm::vec3 &p2, float tMin, float tMax, TriangleHit &hit);
 
 } // namespace mvcl

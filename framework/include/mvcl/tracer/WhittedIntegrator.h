@@ -6,6 +6,7 @@
 /// a RayPolicy (plain data) and the IntegratorPlan of that policy (which stages it needs).
 
 #include <mvcl/core/Bounds3.h>
+#include <mvcl/core/Export.h>
 #include <mvcl/tracer/IntegratorPlan.h>
 #include <mvcl/tracer/Ray.h>
 #include <mvcl/tracer/RayCounters.h>
@@ -26,7 +27,7 @@ namespace detail {
 class MaterialEvaluator;
 }
 
-class WhittedIntegrator {
+class MVCL_EXPORT WhittedIntegrator {
 public:
     /// Reads the scene's layers and materials once (O(meshes + spheres + planes + materials)),
     /// so that plan() costs a few mask operations.

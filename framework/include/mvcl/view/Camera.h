@@ -3,6 +3,8 @@
 /// Pinhole camera: look-at, vertical field of view. Generates unit-direction primary rays, so
 /// t along a primary ray is the distance from the eye (the layer lens's d relies on this).
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/core/Bounds3.h>
 #include <mvcl/model/CameraDesc.h>
 #include <mvcl/tracer/Ray.h>
@@ -12,7 +14,7 @@
 
 namespace mvcl {
 
-class Camera {
+class MVCL_EXPORT Camera {
 public:
     Camera();
     /// \param eye, target, up scene space; up need not be orthogonal to the view direction

@@ -17,7 +17,7 @@
 /// any thread; the result is plain data. A std::stop_token cancels a computation made stale by
 /// an edit.
 ///
-///     DepthHistogramRequest request = depthHistogramRequest(stack, lensIndex, base, camera, w, h);
+///     DepthHistogramRequest request = depthHistogramRequest(tracer, stack, lensIndex, base, camera, w, h);
 ///     auto future = std::async(std::launch::async, [&tracer, request] {
 ///         return computeDepthHistogram(tracer, request);
 ///     });
@@ -25,6 +25,8 @@
 ///     const DepthHistogram histogram = future.get();
 ///     if (!histogram.suggestions.empty())
 ///         applyLensDistance(*stack.lens(lensIndex), histogram.suggestions[0].distance);
+
+#include <mvcl/core/Export.h>
 
 #include <mvcl/lens/LensRegion.h>
 #include <mvcl/lens/PolicyMap.h>
@@ -75,7 +77,7 @@ struct DepthSuggestion {
 };
 
 /// Plain data: copy it, keep it, show it.
-struct DepthHistogram {
+struct MVCL_EXPORT DepthHistogram {
     float tNear = 0.f; ///< range of the bins (fitted to the crossings unless the settings fix it)
     float tFar = 0.f;
     std::vector<uint32_t> counts;   ///< crossings per bin; empty when nothing was hit
@@ -134,16 +136,17 @@ struct DepthHistogramRequest {
 };
 
 /// The request for lens `lensIndex` of `stack`: its committed region, and the other lenses
-/// composed over `base` as surroundings. Reads committed snapshots only, so it may run while
+/// composed over `base` as surroundings, each as it is in this view of the tracer's scene
+/// (lensContextOf(), as a render shows it). Reads committed snapshots only, so it may run while
 /// lenses are edited; throws mvcl::Error for a bad index or size.
-DepthHistogramRequest depthHistogramRequest(const LensStack &stack, int lensIndex, const RayPolicy &base,
-                                            const Camera &camera, int width, int height,
-                                            const DepthHistogramSettings &settings = {});
+MVCL_EXPORT DepthHistogramRequest depthHistogramRequest(const Tracer &tracer, const LensStack &stack, int lensIndex,
+                                                        const RayPolicy &base, const Camera &camera, int width,
+                                                        int height, const DepthHistogramSettings &settings = {});
 
 /// Samples the rays and builds the histogram. Const on its inputs: any thread, any number at
 /// once. An empty region (or one outside the image) gives an empty histogram. Throws
 /// mvcl::Error for a non-positive image size or surroundings of another size.
-DepthHistogram computeDepthHistogram(const Tracer &tracer, const DepthHistogramRequest &request,
+MVCL_EXPORT DepthHistogram computeDepthHistogram(const Tracer &tracer, const DepthHistogramRequest &request,
                                      std::stop_token stop = {});
 
 /// Name of the layer lens's distance property (plugins/layer).
@@ -152,6 +155,6 @@ inline constexpr const char *kLensDistanceProperty = "distance";
 /// Sets the lens's `distance` to `distance` and commits (with whatever else is staged). Throws
 /// mvcl::Error, keeping the previous snapshot, if the lens has no such property or the value is
 /// out of its range.
-void applyLensDistance(Lens &lens, float distance);
+MVCL_EXPORT void applyLensDistance(Lens &lens, float distance);
 
 } // namespace mvcl

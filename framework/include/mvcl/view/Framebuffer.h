@@ -2,6 +2,8 @@
 /// \file Framebuffer.h
 /// Linear-light RGB float image, row-major, row 0 at the top.
 
+#include <mvcl/core/Export.h>
+
 #include <glm/vec3.hpp>
 
 #include <cstddef>
@@ -9,7 +11,7 @@
 
 namespace mvcl {
 
-class Framebuffer {
+class MVCL_EXPORT Framebuffer {
 public:
     Framebuffer() = default;
     Framebuffer(int width, int height);

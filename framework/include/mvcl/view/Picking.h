@@ -13,6 +13,8 @@
 /// A pixel on a feathered lens edge blends several policies; picking uses the dominant one (the
 /// largest weight), as PixelProbe does.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/PolicyMap.h>
 #include <mvcl/tracer/Hit.h>
 #include <mvcl/tracer/Ray.h>
@@ -72,10 +74,10 @@ struct PickResult {
 
 /// The primary ray of pixel (x, y) of a width × height image under `policy`: through the pixel
 /// centre (x + 0.5, y + 0.5) moved by the policy's ray shaping, i.e. the renderer's sample 0.
-Ray pixelCentreRay(const Camera &camera, const PixelPolicy &policy, int x, int y, int width, int height);
+MVCL_EXPORT Ray pixelCentreRay(const Camera &camera, const PixelPolicy &policy, int x, int y, int width, int height);
 
 /// What the primary ray of pixel (x, y) hits under the pixel's dominant policy in `map` (whose
 /// size is the image's). Const and thread-safe; costs one closest-hit query.
-PickResult pick(const Tracer &tracer, const Camera &camera, const PolicyMap &map, int x, int y);
+MVCL_EXPORT PickResult pick(const Tracer &tracer, const Camera &camera, const PolicyMap &map, int x, int y);
 
 } // namespace mvcl

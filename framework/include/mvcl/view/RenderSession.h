@@ -20,6 +20,8 @@
 /// a background thread (start()/stop(), for interactive views); the work itself runs on the
 /// framework's worker pool.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/LensRegion.h>
 #include <mvcl/lens/LensStack.h>
 #include <mvcl/lens/PolicyCost.h>
@@ -48,7 +50,7 @@ enum class PassKind : uint8_t {
     Refine,  ///< more samples for pixels below their budget (progressive or adaptive)
 };
 
-const char *passKindName(PassKind kind);
+MVCL_EXPORT const char *passKindName(PassKind kind);
 
 struct RenderPassStats {
     PassKind kind = PassKind::Idle;
@@ -78,7 +80,7 @@ struct ConvergenceStats {
     bool isConverged = false;    ///< no pixel wants samples: the session is idle
 };
 
-class RenderSession {
+class MVCL_EXPORT RenderSession {
 public:
     /// The tracer (and its scene) must outlive the session.
     explicit RenderSession(const Tracer &tracer);
@@ -142,7 +144,7 @@ public:
     const PolicyMap &policyMap() const;
 
 private:
-    struct Private;
+    struct MVCL_HIDDEN Private;
     std::unique_ptr<Private> d;
 };
 

@@ -6,6 +6,8 @@
 /// to a RenderSession's Fixed-mode image of the same settings. Interactive views (incremental,
 /// progressive, adaptive) use RenderSession.
 
+#include <mvcl/core/Export.h>
+
 #include <mvcl/lens/PolicyMap.h>
 #include <mvcl/view/Camera.h>
 #include <mvcl/view/Framebuffer.h>
@@ -21,7 +23,7 @@ class Tracer;
 /// Called with the fraction done (0..1), from whichever thread finished a tile, serialised.
 using ProgressCallback = std::function<void(float)>;
 
-class Renderer {
+class MVCL_EXPORT Renderer {
 public:
     explicit Renderer(const Tracer &tracer);
 

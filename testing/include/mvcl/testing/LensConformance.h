@@ -1,15 +1,16 @@
 #pragma once
-// The lens conformance checks (the composition rules of docs/architecture.md). Each check takes a factory for
-// the lens under test and returns an AssertionResult, so the same checks run over every
-// registered lens type (LensConformanceTest) and over deliberately broken test lenses that
-// prove every check can fail.
-//
-// Images are rendered from builtin:cube-in-cube at a small size with one sample per pixel:
-// algebra claims are checked by rendering permutations, as the brief asks, not by trusting
-// the composition code that the claims are about. The checks are defined in
-// LensConformance.cpp; what they are built from is in LensConformanceSupport.h.
+/// \file LensConformance.h
+/// The lens conformance checks (the composition rules of docs/architecture.md), part of
+/// mvcl::testing. Each check takes a factory for the lens under test and returns an
+/// AssertionResult, so the same checks run over every lens type of a plugin
+/// (mvcl-lens-conformance, LensConformanceSuite.h) and over deliberately broken test lenses
+/// that prove every check can fail.
+///
+/// Images are rendered from builtin:cube-in-cube at a small size with one sample per pixel:
+/// algebra claims are checked by rendering permutations, not by trusting the composition code
+/// that the claims are about. What the checks are built from is in LensConformanceSupport.h.
 
-#include "LensConformanceSupport.h"
+#include <mvcl/testing/LensConformanceSupport.h>
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // The lens conformance checks: see LensConformance.h.
 
-#include "LensConformance.h"
+#include <mvcl/testing/LensConformance.h>
 
-#include "ErrorOf.h"
+#include <mvcl/testing/ErrorOf.h>
 
 #include <mvcl/core/Error.h>
 

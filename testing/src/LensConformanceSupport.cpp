@@ -1,7 +1,7 @@
 // Random values, comparisons and rendering for the lens conformance checks: see
 // LensConformanceSupport.h.
 
-#include "LensConformanceSupport.h"
+#include <mvcl/testing/LensConformanceSupport.h>
 
 #include <glm/common.hpp>
 
