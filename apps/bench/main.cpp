@@ -2,7 +2,8 @@
 // thread count, in one run. Measures BVH build, primary rays (closestHit vs rtcIntersect1),
 // shadow rays toward a point light (anyHit vs rtcOccluded1) and incoherent diffuse-bounce rays
 // (random hemisphere directions from the primary hits; closestHit vs rtcIntersect1), and checks
-// that the hits agree.
+// that the hits agree. Then the same primary and shadow rays in 4×4 packets (closestHits and
+// anyHits vs rtcIntersect16 and rtcOccluded16, PacketBench.cpp).
 //
 //   mvcl-bench [model.glb | builtin:<name>] [--size WxH] [--threads N] [--repeat R]
 //              [--embree-config OPTIONS]   (extra rtcNewDevice options, e.g. tri_accel=bvh4.triangle4)
@@ -24,6 +25,7 @@
 #include <mvcl/tracer/Tracer.h>
 
 #include "EmbreePeer.h"
+#include "PacketBench.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -213,6 +215,7 @@ int main(int argc, char **argv) {
         const glm::vec3 light =
             b.center() + glm::length(b.extent()) * glm::vec3(0.4f, 1.2f, 0.6f);
         std::vector<mvcl::Ray> shadow;
+        std::vector<int> shadowPixel; // for the packet rows: the 4×4 tile of each shadow ray
         shadow.reserve(n);
         for (int i = 0; i < n; ++i) {
             if (!found[i]) continue;
@@ -221,6 +224,7 @@ int main(int argc, char **argv) {
                 mvcl::offsetRayOrigin(si.position, si.positionError, si.geometricNormal,
                                       light - si.position);
             shadow.push_back({o, light - o}); // t in (0, 1) reaches the light
+            shadowPixel.push_back(i);
         }
         const int ns = int(shadow.size());
 
@@ -330,10 +334,27 @@ int main(int argc, char **argv) {
                     100.0 * sameHitMiss / n, bothHit ? 100.0 * samePrim / bothHit : 100.0,
                     bothHit ? 100.0 * closeT / bothHit : 100.0, ns ? 100.0 * sameOcclusion / ns : 100.0,
                     nb ? 100.0 * sameBounce / nb : 100.0);
+#endif
+        mvcl::bench::PacketBenchInput packets;
+        packets.tracer = tracer.get();
+#ifdef MVCL_HAVE_EMBREE
+        packets.embree = escene;
+#endif
+        packets.primary = &primary.rays;
+        packets.width = opt.width;
+        packets.height = opt.height;
+        packets.primaryQuery = primaryQuery;
+        packets.shadow = &shadow;
+        packets.shadowPixel = &shadowPixel;
+        packets.shadowQuery = shadowQuery;
+        packets.threads = opt.threads;
+        packets.repeat = opt.repeat;
+        const bool packetsAgree = mvcl::bench::runPacketComparison(packets);
+#ifdef MVCL_HAVE_EMBREE
         rtcReleaseScene(escene);
         rtcReleaseDevice(device);
 #endif
-        return 0;
+        return packetsAgree ? 0 : 1;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "mvcl-bench: %s\n", e.what());
         return 1;
