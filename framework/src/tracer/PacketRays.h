@@ -12,6 +12,7 @@ struct alignas(64) PacketRays {
     float ox[kPacketLanes], oy[kPacketLanes], oz[kPacketLanes]; ///< origin
     float dx[kPacketLanes], dy[kPacketLanes], dz[kPacketLanes]; ///< direction
     float tHigh[kPacketLanes]; ///< box culling bound of each ray
+    float tCap[kPacketLanes];  ///< triangle kernel cap of each ray: min(tMax, best hit's cap)
 };
 
 } // namespace mvcl::detail

@@ -243,11 +243,13 @@ struct PacketSetup {
     const RayQuery *query = nullptr;
     unsigned valid = 0; ///< rays with a valid query
     unsigned built = 0; ///< rays whose context exists
+    unsigned dominantAxisLanes[3] = {}; ///< rays by WatertightRay::kz (the largest |direction| axis)
     detail::PacketRays p;
     std::optional<RayContext> contexts[detail::kPacketLanes];
-    std::optional<WatertightRay> wrays[detail::kPacketLanes];
+    std::optional<WatertightRay> wrayStorage[detail::kPacketLanes];
     std::optional<detail::WatertightRay4> wray4s[detail::kPacketLanes];
     const detail::WatertightRay4 *wray4[detail::kPacketLanes] = {};
+    const WatertightRay *wrays[detail::kPacketLanes] = {};
 
     PacketSetup(std::span<const Ray> r, const RayQuery &q) : rays(r.data()), query(&q) {
         for (int i = 0; i < detail::kPacketLanes; ++i) {
@@ -257,6 +259,10 @@ struct PacketSetup {
             const Ray &ray = ok ? r[std::size_t(i)] : Ray{glm::vec3(0.f), glm::vec3(1.f)};
             p.ox[i] = ray.origin.x, p.oy[i] = ray.origin.y, p.oz[i] = ray.origin.z;
             p.dx[i] = ray.direction.x, p.dy[i] = ray.direction.y, p.dz[i] = ray.direction.z;
+            // WatertightRay's choice, ties to the lower axis.
+            const float ax = std::fabs(ray.direction.x), ay = std::fabs(ray.direction.y), az = std::fabs(ray.direction.z);
+            const int kz = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
+            dominantAxisLanes[kz] |= unsigned(ok) << i;
         }
     }
     PacketSetup(const PacketSetup &) = delete;
@@ -265,7 +271,8 @@ struct PacketSetup {
     const RayContext &context(int i) {
         if (!((built >> i) & 1u)) {
             contexts[i].emplace(rays[i], *query);
-            wray4[i] = &wray4s[i].emplace(wrays[i].emplace(rays[i]));
+            wrays[i] = &wrayStorage[i].emplace(rays[i]);
+            wray4[i] = &wray4s[i].emplace(*wrays[i]);
             built |= 1u << i;
         }
         return *contexts[i];
