@@ -382,6 +382,10 @@ struct Tracer::Private {
                                  const MakeBest &makeBest) const;
     template <bool AnyHit, class Best>
     bool testPlanes(const RayContext &c, Best &best) const;
+    /// A tree of fewer nodes is walked ray by ray even in packet queries: the packet's set-up
+    /// costs more than the few node tests it would share (a scene of a few dozen primitives).
+    static constexpr std::size_t kMinPacketNodes = 8;
+    bool packetsPay() const { return packetIsa != detail::PacketIsa::SingleRays && wide.nodeCount >= kMinPacketNodes; }
     /// Whether the query can reach two or more layers (then layer priority applies).
     bool isLayered(const RayQuery &query) const {
         const uint32_t live = layers & query.layerMask;
@@ -650,7 +654,7 @@ void checkPacketSize(std::size_t rays, std::size_t hits) {
 uint32_t Tracer::closestHits(std::span<const Ray> rays, const RayQuery &query, std::span<Hit> hits) const {
     checkPacketSize(rays.size(), hits.size());
     const bool layered = d->isLayered(query);
-    if (d->packetIsa == detail::PacketIsa::SingleRays || (layered && d->contactDistance > 0.f)) {
+    if (!d->packetsPay() || (layered && d->contactDistance > 0.f)) {
         // The contact tolerance re-queries per ray (closestHitWithContact): ray by ray.
         uint32_t result = 0;
         for (std::size_t i = 0; i < rays.size(); ++i)
@@ -665,7 +669,7 @@ uint32_t Tracer::closestHits(std::span<const Ray> rays, const RayQuery &query, s
 
 uint32_t Tracer::anyHits(std::span<const Ray> rays, const RayQuery &query) const {
     checkPacketSize(rays.size(), rays.size());
-    if (d->packetIsa == detail::PacketIsa::SingleRays || (d->contactDistance > 0.f && d->isLayered(query))) {
+    if (!d->packetsPay() || (d->contactDistance > 0.f && d->isLayered(query))) {
         uint32_t result = 0;
         for (std::size_t i = 0; i < rays.size(); ++i)
             if (anyHit(rays[i], query)) result |= 1u << i;

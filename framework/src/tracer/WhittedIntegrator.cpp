@@ -149,7 +149,18 @@ glm::vec3 WhittedIntegrator::radiance(const Ray &primaryRay, const RayPolicy &po
 
 glm::vec3 WhittedIntegrator::radiance(const Ray &primaryRay, const RayPolicy &policy, const IntegratorPlan &plan,
                                       RayCounters &counters) const {
-    glm::vec3 c = trace(primaryRay, RayType::Primary, 0, policy, plan, counters);
+    return finishSample(trace(primaryRay, RayType::Primary, 0, policy, plan, counters), policy, plan, counters);
+}
+
+glm::vec3 WhittedIntegrator::radianceFromHit(const Ray &primaryRay, const Hit *primaryHit, const RayPolicy &policy,
+                                             const IntegratorPlan &plan, RayCounters &counters) const {
+    countRay(RayType::Primary, counters);
+    return finishSample(traceFromHit(primaryRay, RayType::Primary, 0, primaryHit, policy, plan, counters), policy,
+                        plan, counters);
+}
+
+glm::vec3 WhittedIntegrator::finishSample(glm::vec3 c, const RayPolicy &policy, const IntegratorPlan &plan,
+                                          RayCounters &counters) const {
     // The identity map can only turn −0 into +0, and a pixel's sum of samples starts at +0.
     if (plan.appliesColorMap)
         c = policy.color.matrix * c + policy.color.offset;
@@ -163,7 +174,10 @@ glm::vec3 WhittedIntegrator::radiance(const Ray &primaryRay, const RayPolicy &po
 }
 
 bool WhittedIntegrator::closestVisibleHit(const Ray &ray, const RayQuery &query, Hit &hit) const {
-    if (!m_tracer.closestHit(ray, query, hit)) return false;
+    return m_tracer.closestHit(ray, query, hit) && skipCutOutHits(ray, query, hit);
+}
+
+bool WhittedIntegrator::skipCutOutHits(const Ray &ray, const RayQuery &query, Hit &hit) const {
     if (!m_hasCutOutMaterials || !m_materials->isCutOut(hit)) return true;
     // A masked-out hit is not there: look again just past it.
     RayQuery next = query;
@@ -177,10 +191,19 @@ bool WhittedIntegrator::closestVisibleHit(const Ray &ray, const RayQuery &query,
 
 glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, const RayPolicy &policy,
                                    const IntegratorPlan &plan, RayCounters &counters) const {
-    const Scene &scene = m_tracer.scene();
     countRay(type, counters);
     Hit hit;
-    if (!closestVisibleHit(ray, policy.query(type), hit)) return scene.background;
+    const bool found = m_tracer.closestHit(ray, policy.query(type), hit);
+    return traceFromHit(ray, type, depth, found ? &hit : nullptr, policy, plan, counters);
+}
+
+glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int depth, const Hit *closest,
+                                          const RayPolicy &policy, const IntegratorPlan &plan,
+                                          RayCounters &counters) const {
+    const Scene &scene = m_tracer.scene();
+    if (!closest) return scene.background;
+    Hit hit = *closest;
+    if (!skipCutOutHits(ray, policy.query(type), hit)) return scene.background;
 
     const SurfaceInteraction si = m_tracer.interaction(ray, hit);
     const glm::vec3 d = glm::normalize(ray.direction);
