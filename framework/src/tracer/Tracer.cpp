@@ -24,7 +24,8 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
-#include <optional>
+#include <new>
+#include <type_traits>
 #include <string>
 
 #if defined(__SSE2__)
@@ -235,6 +236,16 @@ inline bool testLeaf(uint32_t leaf, const detail::PrimBlock *blocks, const detai
 #pragma GCC pop_options
 #endif
 
+/// Storage for a T made later with placement new, left uninitialised until then: arrays of
+/// std::optional are zeroed when the struct holding them is made, which cost packet queries
+/// as much as their walk. Only for trivially destructible T (never destroyed).
+template <class T>
+union Slot {
+    static_assert(std::is_trivially_destructible_v<T>);
+    Slot() {}
+    T value;
+};
+
 /// A packet query's rays: their origins and directions in lanes, and each ray's context and
 /// triangle-kernel constants, made when the ray first reaches a leaf (most rays of a tile that
 /// misses the model never do).
@@ -245,11 +256,12 @@ struct PacketSetup {
     unsigned built = 0; ///< rays whose context exists
     unsigned dominantAxisLanes[3] = {}; ///< rays by WatertightRay::kz (the largest |direction| axis)
     detail::PacketRays p;
-    std::optional<RayContext> contexts[detail::kPacketLanes];
-    std::optional<WatertightRay> wrayStorage[detail::kPacketLanes];
-    std::optional<detail::WatertightRay4> wray4s[detail::kPacketLanes];
-    const detail::WatertightRay4 *wray4[detail::kPacketLanes] = {};
-    const WatertightRay *wrays[detail::kPacketLanes] = {};
+    Slot<RayContext> contexts[detail::kPacketLanes];
+    Slot<WatertightRay> wrayStorage[detail::kPacketLanes];
+    Slot<detail::WatertightRay4> wray4s[detail::kPacketLanes];
+    // Set by context(i), read only after it.
+    const detail::WatertightRay4 *wray4[detail::kPacketLanes];
+    const WatertightRay *wrays[detail::kPacketLanes];
 
     PacketSetup(std::span<const Ray> r, const RayQuery &q) : rays(r.data()), query(&q) {
         for (int i = 0; i < detail::kPacketLanes; ++i) {
@@ -270,12 +282,12 @@ struct PacketSetup {
 
     const RayContext &context(int i) {
         if (!((built >> i) & 1u)) {
-            contexts[i].emplace(rays[i], *query);
-            wrays[i] = &wrayStorage[i].emplace(rays[i]);
-            wray4[i] = &wray4s[i].emplace(*wrays[i]);
+            new (&contexts[i].value) RayContext(rays[i], *query);
+            wrays[i] = new (&wrayStorage[i].value) WatertightRay(rays[i]);
+            wray4[i] = new (&wray4s[i].value) detail::WatertightRay4(*wrays[i]);
             built |= 1u << i;
         }
-        return *contexts[i];
+        return contexts[i].value;
     }
 };
 
@@ -311,8 +323,8 @@ detail::PacketIsa choosePacketIsa() {
 /// The closest-hit states of a packet's rays, made in place (LayerPriorityHit takes an argument).
 template <class Best>
 struct PacketBests {
-    std::optional<Best> slot[detail::kPacketLanes];
-    Best &operator[](int i) { return *slot[i]; }
+    Slot<Best> slot[detail::kPacketLanes]; ///< made for the valid rays only
+    Best &operator[](int i) { return slot[i].value; }
 };
 
 /// Any-hit queries need a Best only for the type: one shared, never read.
@@ -629,7 +641,7 @@ uint32_t Tracer::Private::closestHitsInPacket(std::span<const Ray> rays, const R
                                               std::span<Hit> hits, const MakeBest &makeBest) const {
     PacketSetup s(rays, query);
     PacketBests<Best> best;
-    for (unsigned rest = s.valid; rest; rest &= rest - 1) best.slot[std::countr_zero(rest)].emplace(makeBest());
+    for (unsigned rest = s.valid; rest; rest &= rest - 1) new (&best.slot[std::countr_zero(rest)].value) Best(makeBest());
     const unsigned found = tracePacket<false>(s.valid, s, best);
     uint32_t result = 0;
     for (unsigned rest = s.valid; rest; rest &= rest - 1) {
