@@ -12,6 +12,7 @@
 //   mvcl-bench cast ...                    (identical primary rays for other tracers: CastBench.cpp)
 
 #include "CommandLineValues.h"
+#include "AlternatingRuns.h"
 #include "BenchSupport.h"
 #include "CastBench.h"
 #include "ConvergenceBench.h"
@@ -56,7 +57,10 @@ using mvcl::bench::g_embreePeak;
 using mvcl::bench::intersectEmbree;
 #endif
 
+using mvcl::bench::alternate;
 using mvcl::bench::bestSeconds;
+using mvcl::bench::printRatio;
+using mvcl::bench::Runs;
 using mvcl::bench::loadMeshes;
 using mvcl::bench::meshesOf;
 using mvcl::bench::parallelRays;
@@ -204,11 +208,26 @@ int main(int argc, char **argv) {
         std::vector<mvcl::Hit> hits(n);
         std::vector<char> found(n);
         const mvcl::RayQuery primaryQuery; // made once, as a renderer would per frame
-        const double oursPrimary = bestSeconds(opt.repeat, [&] {
-            parallelRays(n, opt.threads, [&](int i) {
-                found[i] = tracer->closestHit(primary.rays[i], primaryQuery, hits[i]);
-            });
-        });
+        bool withPeer = false;
+#ifdef MVCL_HAVE_EMBREE
+        withPeer = true;
+        std::vector<RTCRayHit> eh(n);
+#endif
+        // Each pair of measurements alternates the two tracers run by run (AlternatingRuns.h).
+        Runs oursPrimary, embreePrimary;
+        alternate(
+            opt.repeat, withPeer,
+            [&] {
+                parallelRays(n, opt.threads, [&](int i) {
+                    found[i] = tracer->closestHit(primary.rays[i], primaryQuery, hits[i]);
+                });
+            },
+            [&] {
+#ifdef MVCL_HAVE_EMBREE
+                parallelRays(n, opt.threads, [&](int i) { intersectEmbree(escene, primary.rays[i], eh[i]); });
+#endif
+            },
+            oursPrimary, embreePrimary);
 
         // Shadow rays from our primary hits toward a point light above and behind the camera.
         const mvcl::Bounds3f b = scene.bounds();
@@ -251,56 +270,64 @@ int main(int argc, char **argv) {
         mvcl::RayQuery shadowQuery;
         shadowQuery.tMax = 1.f - 1e-4f;
         std::vector<char> occluded(ns);
-        const double oursShadow = bestSeconds(opt.repeat, [&] {
-            parallelRays(ns, opt.threads,
-                         [&](int i) { occluded[i] = tracer->anyHit(shadow[i], shadowQuery); });
-        });
+#ifdef MVCL_HAVE_EMBREE
+        std::vector<char> eOccluded(ns);
+#endif
+        Runs oursShadow, embreeShadow;
+        alternate(
+            opt.repeat, withPeer,
+            [&] {
+                parallelRays(ns, opt.threads, [&](int i) { occluded[i] = tracer->anyHit(shadow[i], shadowQuery); });
+            },
+            [&] {
+#ifdef MVCL_HAVE_EMBREE
+                parallelRays(ns, opt.threads, [&](int i) {
+                    RTCIntersectContext ctx;
+                    rtcInitIntersectContext(&ctx);
+                    RTCRay ray;
+                    const mvcl::Ray &r = shadow[i];
+                    ray.org_x = r.origin.x, ray.org_y = r.origin.y, ray.org_z = r.origin.z;
+                    ray.dir_x = r.direction.x, ray.dir_y = r.direction.y, ray.dir_z = r.direction.z;
+                    ray.tnear = 0.f;
+                    ray.tfar = shadowQuery.tMax;
+                    ray.mask = ~0u;
+                    ray.flags = 0;
+                    ray.time = 0.f;
+                    rtcOccluded1(escene, &ctx, &ray);
+                    eOccluded[i] = ray.tfar < 0.f; // Embree sets tfar = −inf when occluded
+                });
+#endif
+            },
+            oursShadow, embreeShadow);
 
         std::vector<mvcl::Hit> bounceHits(nb);
         std::vector<char> bounceFound(nb);
-        const double oursBounce = bestSeconds(opt.repeat, [&] {
-            parallelRays(nb, opt.threads, [&](int i) {
-                bounceFound[i] = tracer->closestHit(bounce[i], primaryQuery, bounceHits[i]);
-            });
-        });
-
-        double embreePrimary = 0.0, embreeShadow = 0.0, embreeBounce = 0.0;
 #ifdef MVCL_HAVE_EMBREE
-        std::vector<RTCRayHit> eh(n);
-        embreePrimary = bestSeconds(opt.repeat, [&] {
-            parallelRays(n, opt.threads,
-                         [&](int i) { intersectEmbree(escene, primary.rays[i], eh[i]); });
-        });
-        std::vector<char> eOccluded(ns);
-        embreeShadow = bestSeconds(opt.repeat, [&] {
-            parallelRays(ns, opt.threads, [&](int i) {
-                RTCIntersectContext ctx;
-                rtcInitIntersectContext(&ctx);
-                RTCRay ray;
-                const mvcl::Ray &r = shadow[i];
-                ray.org_x = r.origin.x, ray.org_y = r.origin.y, ray.org_z = r.origin.z;
-                ray.dir_x = r.direction.x, ray.dir_y = r.direction.y, ray.dir_z = r.direction.z;
-                ray.tnear = 0.f;
-                ray.tfar = shadowQuery.tMax;
-                ray.mask = ~0u;
-                ray.flags = 0;
-                ray.time = 0.f;
-                rtcOccluded1(escene, &ctx, &ray);
-                eOccluded[i] = ray.tfar < 0.f; // Embree sets tfar = −inf when occluded
-            });
-        });
         std::vector<RTCRayHit> ebh(nb);
-        embreeBounce = bestSeconds(opt.repeat, [&] {
-            parallelRays(nb, opt.threads, [&](int i) { intersectEmbree(escene, bounce[i], ebh[i]); });
-        });
 #endif
+        Runs oursBounce, embreeBounce;
+        alternate(
+            opt.repeat, withPeer,
+            [&] {
+                parallelRays(nb, opt.threads, [&](int i) {
+                    bounceFound[i] = tracer->closestHit(bounce[i], primaryQuery, bounceHits[i]);
+                });
+            },
+            [&] {
+#ifdef MVCL_HAVE_EMBREE
+                parallelRays(nb, opt.threads, [&](int i) { intersectEmbree(escene, bounce[i], ebh[i]); });
+#endif
+            },
+            oursBounce, embreeBounce);
         std::printf("\n");
-        printRow("primary (closestHit)", mrays(n, oursPrimary), embreePrimary > 0 ? mrays(n, embreePrimary) : 0.0,
-                 "Mrays/s", true);
-        printRow("shadow (anyHit)", mrays(ns, oursShadow), embreeShadow > 0 ? mrays(ns, embreeShadow) : 0.0,
-                 "Mrays/s", true);
-        printRow("diffuse (closestHit)", mrays(nb, oursBounce),
-                 embreeBounce > 0 ? mrays(nb, embreeBounce) : 0.0, "Mrays/s", true);
+        // The best runs in the row, then the medians and the spread of the back-to-back pairs.
+        auto rayRow = [&](const char *what, std::size_t count, const Runs &ours, const Runs &peer) {
+            printRow(what, mrays(count, ours.best()), withPeer ? mrays(count, peer.best()) : 0.0, "Mrays/s", true);
+            if (withPeer) printRatio(ours, peer);
+        };
+        rayRow("primary (closestHit)", std::size_t(n), oursPrimary, embreePrimary);
+        rayRow("shadow (anyHit)", std::size_t(ns), oursShadow, embreeShadow);
+        rayRow("diffuse (closestHit)", std::size_t(nb), oursBounce, embreeBounce);
         std::printf("%-22s ours %10.2f MB", "memory", double(st.memoryBytes) / (1 << 20));
 #ifdef MVCL_HAVE_EMBREE
         std::printf("   embree %10.2f MB (scene allocations)", double(embreeBytes) / (1 << 20));
