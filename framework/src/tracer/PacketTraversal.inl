@@ -8,11 +8,13 @@
 // enters every box its own single-ray traversal could need, so the nearest hit in the total order
 // of hitPrecedes() (and layer priority's window, a function of the candidate set) is found
 // whatever order the packet visits the leaves in: the results are those of Tracer::closestHit()
-// bit for bit. Leaves are tested ray by ray with the single-ray 4-triangle kernel (testLeaf), so
-// every t and barycentric is the same arithmetic too.
+// bit for bit. Leaves run the watertight test with the rays in the lanes (one triangle against
+// all rays: intersectAcrossRays, the 4-wide kernel's operations per ray and triangle), or, for
+// layer priority (which needs the error bound) and leaves holding spheres, ray by ray through
+// testLeaf; either way every t and barycentric is the single-ray arithmetic.
 //
-// The packet shares one near/far slab choice: Tracer.cpp splits a packet by direction octant
-// first. Expects MVCL_PACKET_NS, MVCL_PACKET_AVX512 (0 or 1) and the helpers of Tracer.cpp.
+// Each walk shares one near/far slab choice: tracePacket() splits the rays by direction octant.
+// Expects MVCL_PACKET_NS, MVCL_PACKET_AVX512 (0 or 1) and the helpers of Tracer.cpp.
 
 namespace MVCL_PACKET_NS {
 
