@@ -2,7 +2,8 @@
 // thread count, in one run. Measures BVH build, primary rays (closestHit vs rtcIntersect1),
 // shadow rays toward a point light (anyHit vs rtcOccluded1) and incoherent diffuse-bounce rays
 // (random hemisphere directions from the primary hits; closestHit vs rtcIntersect1), and checks
-// that the hits agree.
+// that the hits agree. Then the same primary and shadow rays in 4×4 packets (closestHits and
+// anyHits vs rtcIntersect16 and rtcOccluded16, PacketBench.cpp).
 //
 //   mvcl-bench [model.glb | builtin:<name>] [--size WxH] [--threads N] [--repeat R]
 //              [--embree-config OPTIONS]   (extra rtcNewDevice options, e.g. tri_accel=bvh4.triangle4)
@@ -11,6 +12,7 @@
 //   mvcl-bench cast ...                    (identical primary rays for other tracers: CastBench.cpp)
 
 #include "CommandLineValues.h"
+#include "AlternatingRuns.h"
 #include "BenchSupport.h"
 #include "CastBench.h"
 #include "ConvergenceBench.h"
@@ -24,6 +26,7 @@
 #include <mvcl/tracer/Tracer.h>
 
 #include "EmbreePeer.h"
+#include "PacketBench.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -54,7 +57,10 @@ using mvcl::bench::g_embreePeak;
 using mvcl::bench::intersectEmbree;
 #endif
 
+using mvcl::bench::alternate;
 using mvcl::bench::bestSeconds;
+using mvcl::bench::printRatio;
+using mvcl::bench::Runs;
 using mvcl::bench::loadMeshes;
 using mvcl::bench::meshesOf;
 using mvcl::bench::parallelRays;
@@ -202,17 +208,33 @@ int main(int argc, char **argv) {
         std::vector<mvcl::Hit> hits(n);
         std::vector<char> found(n);
         const mvcl::RayQuery primaryQuery; // made once, as a renderer would per frame
-        const double oursPrimary = bestSeconds(opt.repeat, [&] {
-            parallelRays(n, opt.threads, [&](int i) {
-                found[i] = tracer->closestHit(primary.rays[i], primaryQuery, hits[i]);
-            });
-        });
+        bool withPeer = false;
+#ifdef MVCL_HAVE_EMBREE
+        withPeer = true;
+        std::vector<RTCRayHit> eh(n);
+#endif
+        // Each pair of measurements alternates the two tracers run by run (AlternatingRuns.h).
+        Runs oursPrimary, embreePrimary;
+        alternate(
+            opt.repeat, withPeer,
+            [&] {
+                parallelRays(n, opt.threads, [&](int i) {
+                    found[i] = tracer->closestHit(primary.rays[i], primaryQuery, hits[i]);
+                });
+            },
+            [&] {
+#ifdef MVCL_HAVE_EMBREE
+                parallelRays(n, opt.threads, [&](int i) { intersectEmbree(escene, primary.rays[i], eh[i]); });
+#endif
+            },
+            oursPrimary, embreePrimary);
 
         // Shadow rays from our primary hits toward a point light above and behind the camera.
         const mvcl::Bounds3f b = scene.bounds();
         const glm::vec3 light =
             b.center() + glm::length(b.extent()) * glm::vec3(0.4f, 1.2f, 0.6f);
         std::vector<mvcl::Ray> shadow;
+        std::vector<int> shadowPixel; // for the packet rows: the 4×4 tile of each shadow ray
         shadow.reserve(n);
         for (int i = 0; i < n; ++i) {
             if (!found[i]) continue;
@@ -221,6 +243,7 @@ int main(int argc, char **argv) {
                 mvcl::offsetRayOrigin(si.position, si.positionError, si.geometricNormal,
                                       light - si.position);
             shadow.push_back({o, light - o}); // t in (0, 1) reaches the light
+            shadowPixel.push_back(i);
         }
         const int ns = int(shadow.size());
 
@@ -247,56 +270,64 @@ int main(int argc, char **argv) {
         mvcl::RayQuery shadowQuery;
         shadowQuery.tMax = 1.f - 1e-4f;
         std::vector<char> occluded(ns);
-        const double oursShadow = bestSeconds(opt.repeat, [&] {
-            parallelRays(ns, opt.threads,
-                         [&](int i) { occluded[i] = tracer->anyHit(shadow[i], shadowQuery); });
-        });
+#ifdef MVCL_HAVE_EMBREE
+        std::vector<char> eOccluded(ns);
+#endif
+        Runs oursShadow, embreeShadow;
+        alternate(
+            opt.repeat, withPeer,
+            [&] {
+                parallelRays(ns, opt.threads, [&](int i) { occluded[i] = tracer->anyHit(shadow[i], shadowQuery); });
+            },
+            [&] {
+#ifdef MVCL_HAVE_EMBREE
+                parallelRays(ns, opt.threads, [&](int i) {
+                    RTCIntersectContext ctx;
+                    rtcInitIntersectContext(&ctx);
+                    RTCRay ray;
+                    const mvcl::Ray &r = shadow[i];
+                    ray.org_x = r.origin.x, ray.org_y = r.origin.y, ray.org_z = r.origin.z;
+                    ray.dir_x = r.direction.x, ray.dir_y = r.direction.y, ray.dir_z = r.direction.z;
+                    ray.tnear = 0.f;
+                    ray.tfar = shadowQuery.tMax;
+                    ray.mask = ~0u;
+                    ray.flags = 0;
+                    ray.time = 0.f;
+                    rtcOccluded1(escene, &ctx, &ray);
+                    eOccluded[i] = ray.tfar < 0.f; // Embree sets tfar = −inf when occluded
+                });
+#endif
+            },
+            oursShadow, embreeShadow);
 
         std::vector<mvcl::Hit> bounceHits(nb);
         std::vector<char> bounceFound(nb);
-        const double oursBounce = bestSeconds(opt.repeat, [&] {
-            parallelRays(nb, opt.threads, [&](int i) {
-                bounceFound[i] = tracer->closestHit(bounce[i], primaryQuery, bounceHits[i]);
-            });
-        });
-
-        double embreePrimary = 0.0, embreeShadow = 0.0, embreeBounce = 0.0;
 #ifdef MVCL_HAVE_EMBREE
-        std::vector<RTCRayHit> eh(n);
-        embreePrimary = bestSeconds(opt.repeat, [&] {
-            parallelRays(n, opt.threads,
-                         [&](int i) { intersectEmbree(escene, primary.rays[i], eh[i]); });
-        });
-        std::vector<char> eOccluded(ns);
-        embreeShadow = bestSeconds(opt.repeat, [&] {
-            parallelRays(ns, opt.threads, [&](int i) {
-                RTCIntersectContext ctx;
-                rtcInitIntersectContext(&ctx);
-                RTCRay ray;
-                const mvcl::Ray &r = shadow[i];
-                ray.org_x = r.origin.x, ray.org_y = r.origin.y, ray.org_z = r.origin.z;
-                ray.dir_x = r.direction.x, ray.dir_y = r.direction.y, ray.dir_z = r.direction.z;
-                ray.tnear = 0.f;
-                ray.tfar = shadowQuery.tMax;
-                ray.mask = ~0u;
-                ray.flags = 0;
-                ray.time = 0.f;
-                rtcOccluded1(escene, &ctx, &ray);
-                eOccluded[i] = ray.tfar < 0.f; // Embree sets tfar = −inf when occluded
-            });
-        });
         std::vector<RTCRayHit> ebh(nb);
-        embreeBounce = bestSeconds(opt.repeat, [&] {
-            parallelRays(nb, opt.threads, [&](int i) { intersectEmbree(escene, bounce[i], ebh[i]); });
-        });
 #endif
+        Runs oursBounce, embreeBounce;
+        alternate(
+            opt.repeat, withPeer,
+            [&] {
+                parallelRays(nb, opt.threads, [&](int i) {
+                    bounceFound[i] = tracer->closestHit(bounce[i], primaryQuery, bounceHits[i]);
+                });
+            },
+            [&] {
+#ifdef MVCL_HAVE_EMBREE
+                parallelRays(nb, opt.threads, [&](int i) { intersectEmbree(escene, bounce[i], ebh[i]); });
+#endif
+            },
+            oursBounce, embreeBounce);
         std::printf("\n");
-        printRow("primary (closestHit)", mrays(n, oursPrimary), embreePrimary > 0 ? mrays(n, embreePrimary) : 0.0,
-                 "Mrays/s", true);
-        printRow("shadow (anyHit)", mrays(ns, oursShadow), embreeShadow > 0 ? mrays(ns, embreeShadow) : 0.0,
-                 "Mrays/s", true);
-        printRow("diffuse (closestHit)", mrays(nb, oursBounce),
-                 embreeBounce > 0 ? mrays(nb, embreeBounce) : 0.0, "Mrays/s", true);
+        // The best runs in the row, then the medians and the spread of the back-to-back pairs.
+        auto rayRow = [&](const char *what, std::size_t count, const Runs &ours, const Runs &peer) {
+            printRow(what, mrays(count, ours.best()), withPeer ? mrays(count, peer.best()) : 0.0, "Mrays/s", true);
+            if (withPeer) printRatio(ours, peer);
+        };
+        rayRow("primary (closestHit)", std::size_t(n), oursPrimary, embreePrimary);
+        rayRow("shadow (anyHit)", std::size_t(ns), oursShadow, embreeShadow);
+        rayRow("diffuse (closestHit)", std::size_t(nb), oursBounce, embreeBounce);
         std::printf("%-22s ours %10.2f MB", "memory", double(st.memoryBytes) / (1 << 20));
 #ifdef MVCL_HAVE_EMBREE
         std::printf("   embree %10.2f MB (scene allocations)", double(embreeBytes) / (1 << 20));
@@ -330,10 +361,27 @@ int main(int argc, char **argv) {
                     100.0 * sameHitMiss / n, bothHit ? 100.0 * samePrim / bothHit : 100.0,
                     bothHit ? 100.0 * closeT / bothHit : 100.0, ns ? 100.0 * sameOcclusion / ns : 100.0,
                     nb ? 100.0 * sameBounce / nb : 100.0);
+#endif
+        mvcl::bench::PacketBenchInput packets;
+        packets.tracer = tracer.get();
+#ifdef MVCL_HAVE_EMBREE
+        packets.embree = escene;
+#endif
+        packets.primary = &primary.rays;
+        packets.width = opt.width;
+        packets.height = opt.height;
+        packets.primaryQuery = primaryQuery;
+        packets.shadow = &shadow;
+        packets.shadowPixel = &shadowPixel;
+        packets.shadowQuery = shadowQuery;
+        packets.threads = opt.threads;
+        packets.repeat = opt.repeat;
+        const bool packetsAgree = mvcl::bench::runPacketComparison(packets);
+#ifdef MVCL_HAVE_EMBREE
         rtcReleaseScene(escene);
         rtcReleaseDevice(device);
 #endif
-        return 0;
+        return packetsAgree ? 0 : 1;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "mvcl-bench: %s\n", e.what());
         return 1;

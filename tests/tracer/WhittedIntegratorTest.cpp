@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 
 using namespace mvcl;
@@ -160,4 +161,38 @@ TEST(WhittedIntegrator, TransparentOccludersPassTheirTransparencyIntoShadows) {
     const glm::vec3 c = WhittedIntegrator(tracer).radiance({{0.f, 1.5f, 0.f}, {0.f, -1.f, 0.f}}, {}, counters);
     EXPECT_NEAR(c.r, 0.25f, 1e-5f);
     EXPECT_EQ(counters.shadow, 1u);
+}
+
+// radianceFromHit() is what the renderer calls with a packet's primary hits: given the primary
+// ray's closest hit (or its miss), it must return radiance()'s value bit for bit and count the
+// same rays, over the default scene (two layers, glass, mirrors, spheres, a plane) and the onion.
+TEST(WhittedIntegrator, RadianceFromAKnownPrimaryHitIsRadiance) {
+    for (const char *name : {"cube-in-cube", "onion"}) {
+        SCOPED_TRACE(name);
+        const Scene scene = makeBuiltinScene(name);
+        const Tracer tracer(scene);
+        const WhittedIntegrator integrator(tracer);
+        RayPolicy policy;
+        policy.color.matrix = glm::mat3(0.9f); // a colour map too
+        const IntegratorPlan plan = integrator.plan(policy, StageSelection::SkipUnneeded);
+        const Bounds3f b = scene.bounds();
+        const glm::vec3 eye = b.center() + 1.5f * glm::length(b.extent()) * glm::normalize(glm::vec3(0.4f, 0.5f, 1.f));
+        int hits = 0;
+        for (int y = 0; y < 24; ++y)
+            for (int x = 0; x < 32; ++x) {
+                const glm::vec3 target = b.min + glm::vec3((float(x) + 0.5f) / 32.f, (float(y) + 0.5f) / 24.f, 0.5f) * b.extent();
+                const Ray ray{eye, glm::normalize(target - eye)};
+                RayCounters expectedCounters, counters;
+                const glm::vec3 expected = integrator.radiance(ray, policy, plan, expectedCounters);
+                Hit hit;
+                const bool found = tracer.closestHit(ray, policy.query(RayType::Primary), hit);
+                hits += found;
+                const glm::vec3 value = integrator.radianceFromHit(ray, found ? &hit : nullptr, policy, plan, counters);
+                for (int k = 0; k < 3; ++k)
+                    ASSERT_EQ(std::bit_cast<uint32_t>(value[k]), std::bit_cast<uint32_t>(expected[k])) << x << "," << y;
+                ASSERT_EQ(counters.total(), expectedCounters.total()) << x << "," << y;
+                ASSERT_EQ(counters.primary, 1u);
+            }
+        EXPECT_GT(hits, 100);
+    }
 }

@@ -4,12 +4,14 @@
 #include "Bvh.h"
 #include "LayerPriorityHit.h"
 #include "NearestHit.h"
+#include "PacketRays.h"
 #include "WideBvh.h"
 #include "RayContext.h"
 #include "TraversalIsa.h"
 #include "WatertightTriangle.h"
 #include "WatertightTriangle4.h"
 
+#include <mvcl/core/Error.h>
 #include <mvcl/core/FloatBits.h>
 #include <mvcl/core/WorkerPool.h>
 #include <mvcl/model/Scene.h>
@@ -22,6 +24,9 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <new>
+#include <type_traits>
+#include <string>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -231,16 +236,116 @@ inline bool testLeaf(uint32_t leaf, const detail::PrimBlock *blocks, const detai
 #pragma GCC pop_options
 #endif
 
+/// Storage for a T made later with placement new, left uninitialised until then: arrays of
+/// std::optional are zeroed when the struct holding them is made, which cost packet queries
+/// as much as their walk. Only for trivially destructible T (never destroyed).
+template <class T>
+union Slot {
+    static_assert(std::is_trivially_destructible_v<T>);
+    Slot() {}
+    T value;
+};
+
+/// A packet query's rays: their origins and directions in lanes, and each ray's context and
+/// triangle-kernel constants, made when the ray first reaches a leaf (most rays of a tile that
+/// misses the model never do).
+struct PacketSetup {
+    const Ray *rays = nullptr;
+    const RayQuery *query = nullptr;
+    unsigned valid = 0; ///< rays with a valid query
+    unsigned built = 0; ///< rays whose context exists
+    unsigned dominantAxisLanes[3] = {}; ///< rays by WatertightRay::kz (the largest |direction| axis)
+    detail::PacketRays p;
+    Slot<RayContext> contexts[detail::kPacketLanes];
+    Slot<WatertightRay> wrayStorage[detail::kPacketLanes];
+    Slot<detail::WatertightRay4> wray4s[detail::kPacketLanes];
+    // Set by context(i), read only after it.
+    const detail::WatertightRay4 *wray4[detail::kPacketLanes];
+    const WatertightRay *wrays[detail::kPacketLanes];
+
+    PacketSetup(std::span<const Ray> r, const RayQuery &q) : rays(r.data()), query(&q) {
+        for (int i = 0; i < detail::kPacketLanes; ++i) {
+            // Lanes without a valid ray get harmless constants; no walk ever reads them.
+            const bool ok = std::size_t(i) < r.size() && detail::isValidQuery(r[std::size_t(i)], q);
+            valid |= unsigned(ok) << i;
+            const Ray &ray = ok ? r[std::size_t(i)] : Ray{glm::vec3(0.f), glm::vec3(1.f)};
+            p.ox[i] = ray.origin.x, p.oy[i] = ray.origin.y, p.oz[i] = ray.origin.z;
+            p.dx[i] = ray.direction.x, p.dy[i] = ray.direction.y, p.dz[i] = ray.direction.z;
+            // WatertightRay's choice, ties to the lower axis.
+            const float ax = std::fabs(ray.direction.x), ay = std::fabs(ray.direction.y), az = std::fabs(ray.direction.z);
+            const int kz = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
+            dominantAxisLanes[kz] |= unsigned(ok) << i;
+        }
+    }
+    PacketSetup(const PacketSetup &) = delete;
+    PacketSetup &operator=(const PacketSetup &) = delete;
+
+    const RayContext &context(int i) {
+        if (!((built >> i) & 1u)) {
+            new (&contexts[i].value) RayContext(rays[i], *query);
+            wrays[i] = new (&wrayStorage[i].value) WatertightRay(rays[i]);
+            wray4[i] = new (&wray4s[i].value) detail::WatertightRay4(*wrays[i]);
+            built |= 1u << i;
+        }
+        return contexts[i].value;
+    }
+};
+
+#if MVCL_HAVE_AVX2_TRAVERSAL
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#define MVCL_PACKET_NS packet_avx2
+#define MVCL_PACKET_AVX512 0
+#include "PacketTraversal.inl"
+#undef MVCL_PACKET_NS
+#undef MVCL_PACKET_AVX512
+#pragma GCC pop_options
+#pragma GCC push_options
+#pragma GCC target("avx512f")
+#define MVCL_PACKET_NS packet_avx512
+#define MVCL_PACKET_AVX512 1
+#include "PacketTraversal.inl"
+#undef MVCL_PACKET_NS
+#undef MVCL_PACKET_AVX512
+#pragma GCC pop_options
+#endif
+
 /// Set by tests (TraversalIsa.h) to force the baseline path.
 std::atomic<bool> g_forceSseTraversal{false};
+std::atomic<detail::PacketIsa> g_packetIsaLimit{detail::PacketIsa::Avx512};
 
 bool useAvx2Traversal() { return !g_forceSseTraversal.load() && detail::avx2TraversalAvailable(); }
+
+detail::PacketIsa choosePacketIsa() {
+    return std::min(detail::packetIsaAvailable(), g_packetIsaLimit.load());
+}
+
+/// The closest-hit states of a packet's rays, made in place (LayerPriorityHit takes an argument).
+template <class Best>
+struct PacketBests {
+    Slot<Best> slot[detail::kPacketLanes]; ///< made for the valid rays only
+    Best &operator[](int i) { return slot[i].value; }
+};
+
+/// Any-hit queries need a Best only for the type: one shared, never read.
+struct UnusedBests {
+    detail::NearestHit unused;
+    detail::NearestHit &operator[](int) { return unused; }
+};
 
 } // namespace
 
 namespace detail {
 
 void forceSseTraversal(bool force) { g_forceSseTraversal.store(force); }
+void limitPacketIsa(PacketIsa isa) { g_packetIsaLimit.store(isa); }
+PacketIsa packetIsaAvailable() {
+#if MVCL_HAVE_AVX2_TRAVERSAL
+    if (__builtin_cpu_supports("avx512f")) return PacketIsa::Avx512;
+    if (__builtin_cpu_supports("avx2")) return PacketIsa::Avx2;
+#endif
+    return PacketIsa::SingleRays;
+}
 bool avx2TraversalAvailable() {
 #if MVCL_HAVE_AVX2_TRAVERSAL
     return __builtin_cpu_supports("avx2");
@@ -255,6 +360,7 @@ struct Tracer::Private {
     TracerSettings settings;
     detail::WideBvh wide; ///< what traversal walks (the binary tree is dropped after the collapse)
     bool useAvx2 = useAvx2Traversal(); ///< which compiled variant of traverse() runs
+    detail::PacketIsa packetIsa = choosePacketIsa(); ///< which variant of tracePacket() runs
     std::vector<PlaneRecord> planes;
     TracerBuildStats stats;
 
@@ -273,8 +379,25 @@ struct Tracer::Private {
 #endif
         return sse::traverse<AnyHit>(wide, c, best);
     }
+    template <bool AnyHit, class Bests>
+    unsigned tracePacket(unsigned lanes, PacketSetup &s, Bests &best) const {
+#if MVCL_HAVE_AVX2_TRAVERSAL
+        if (packetIsa == detail::PacketIsa::Avx512) return packet_avx512::tracePacket<AnyHit>(wide, lanes, s, best);
+        return packet_avx2::tracePacket<AnyHit>(wide, lanes, s, best);
+#else
+        (void)lanes, (void)s, (void)best;
+        return 0;
+#endif
+    }
+    template <class Best, class MakeBest>
+    uint32_t closestHitsInPacket(std::span<const Ray> rays, const RayQuery &query, std::span<Hit> hits,
+                                 const MakeBest &makeBest) const;
     template <bool AnyHit, class Best>
     bool testPlanes(const RayContext &c, Best &best) const;
+    /// A tree of fewer nodes is walked ray by ray even in packet queries: the packet's set-up
+    /// costs more than the few node tests it would share (a scene of a few dozen primitives).
+    static constexpr std::size_t kMinPacketNodes = 8;
+    bool packetsPay() const { return packetIsa != detail::PacketIsa::SingleRays && wide.nodeCount >= kMinPacketNodes; }
     /// Whether the query can reach two or more layers (then layer priority applies).
     bool isLayered(const RayQuery &query) const {
         const uint32_t live = layers & query.layerMask;
@@ -513,6 +636,79 @@ bool Tracer::anyHit(const Ray &ray, const RayQuery &query) const {
     return d->closestHitWithContact(*this, ray, query, unused, Private::Oracle::Traversal);
 }
 
+template <class Best, class MakeBest>
+uint32_t Tracer::Private::closestHitsInPacket(std::span<const Ray> rays, const RayQuery &query,
+                                              std::span<Hit> hits, const MakeBest &makeBest) const {
+    PacketSetup s(rays, query);
+    PacketBests<Best> best;
+    for (unsigned rest = s.valid; rest; rest &= rest - 1) new (&best.slot[std::countr_zero(rest)].value) Best(makeBest());
+    const unsigned found = tracePacket<false>(s.valid, s, best);
+    uint32_t result = 0;
+    for (unsigned rest = s.valid; rest; rest &= rest - 1) {
+        const int i = std::countr_zero(rest);
+        const bool any = ((found >> i) & 1u) | (!planes.empty() && testPlanes<false>(s.context(i), best[i]));
+        if (any && best[i].resolve(hits[std::size_t(i)])) result |= 1u << i;
+    }
+    return result;
+}
+
+namespace {
+void checkPacketSize(std::size_t rays, std::size_t hits) {
+    if (rays > std::size_t(Tracer::kPacketSize))
+        throw Error("tracer", "a packet query takes at most " + std::to_string(Tracer::kPacketSize) +
+                                  " rays, not " + std::to_string(rays));
+    if (hits < rays)
+        throw Error("tracer", "a packet query of " + std::to_string(rays) + " rays needs as many hits, not " +
+                                  std::to_string(hits));
+}
+} // namespace
+
+uint32_t Tracer::closestHits(std::span<const Ray> rays, const RayQuery &query, std::span<Hit> hits) const {
+    checkPacketSize(rays.size(), hits.size());
+    const bool layered = d->isLayered(query);
+    if (!d->packetsPay() || (layered && d->contactDistance > 0.f)) {
+        // The contact tolerance re-queries per ray (closestHitWithContact): ray by ray.
+        uint32_t result = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i)
+            if (closestHit(rays[i], query, hits[i])) result |= 1u << i;
+        return result;
+    }
+    if (layered)
+        return d->closestHitsInPacket<detail::LayerPriorityHit>(rays, query, hits,
+                                                               [] { return detail::LayerPriorityHit(0.f); });
+    return d->closestHitsInPacket<detail::NearestHit>(rays, query, hits, [] { return detail::NearestHit(); });
+}
+
+uint32_t Tracer::anyHits(std::span<const Ray> rays, const RayQuery &query) const {
+    checkPacketSize(rays.size(), rays.size());
+    if (!d->packetsPay() || (d->contactDistance > 0.f && d->isLayered(query))) {
+        uint32_t result = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i)
+            if (anyHit(rays[i], query)) result |= 1u << i;
+        return result;
+    }
+    PacketSetup s(rays, query);
+    UnusedBests unused;
+    uint32_t result = 0;
+    if (!d->planes.empty())
+        for (unsigned rest = s.valid; rest; rest &= rest - 1) {
+            const int i = std::countr_zero(rest);
+            if (d->testPlanes<true>(s.context(i), unused.unused)) result |= 1u << i;
+        }
+    return result | d->tracePacket<true>(s.valid & ~result, s, unused);
+}
+
+const char *Tracer::singleRayIsa() const { return d->useAvx2 ? "avx2" : "sse2"; }
+
+const char *Tracer::packetIsa() const {
+    switch (d->packetIsa) {
+    case detail::PacketIsa::Avx512: return "avx512";
+    case detail::PacketIsa::Avx2: return "avx2";
+    case detail::PacketIsa::SingleRays: break;
+    }
+    return "single rays";
+}
+
 bool Tracer::closestHitBruteForce(const Ray &ray, const RayQuery &query, Hit &hit) const {
     if (!detail::isValidQuery(ray, query)) return false;
     return d->closestHitWithContact(*this, ray, query, hit, Private::Oracle::BruteForce);
@@ -544,80 +740,6 @@ bool Tracer::Private::closestHitBruteForce(const RayContext &c, Best &best, Hit 
     }
     found |= testPlanes<false>(c, best);
     return found && best.resolve(hit);
-}
-
-SurfaceInteraction Tracer::interaction(const Ray &ray, const Hit &hit) const {
-    SurfaceInteraction si;
-    const Scene &scene = d->scene;
-    switch (hit.kind) {
-    case GeometryKind::Triangle: {
-        const TriangleMesh &mesh = scene.meshes[hit.geometry];
-        const glm::uvec3 tri = mesh.indices[hit.primitive];
-        const glm::vec3 &p0 = mesh.positions[tri.x];
-        const glm::vec3 &p1 = mesh.positions[tri.y];
-        const glm::vec3 &p2 = mesh.positions[tri.z];
-        const float b1 = hit.u, b2 = hit.v, b0 = 1.f - b1 - b2;
-        // From barycentrics, not o + t·d: the error then scales with the vertices, not with the
-        // distance travelled (pbrt-v4 §6.8.5).
-        // Each product rounded on its own (unfused): hit points must not depend on FMA contraction.
-        const auto unfusedProduct = [](float b, const glm::vec3 &p) {
-            return glm::vec3(mulUnfused(b, p.x), mulUnfused(b, p.y), mulUnfused(b, p.z));
-        };
-        const glm::vec3 q0 = unfusedProduct(b0, p0), q1 = unfusedProduct(b1, p1), q2 = unfusedProduct(b2, p2);
-        si.position = q0 + q1 + q2;
-        si.positionError = gamma(7) * (glm::abs(q0) + glm::abs(q1) + glm::abs(q2));
-        const glm::dvec3 e1 = glm::dvec3(p1) - glm::dvec3(p0);
-        const glm::dvec3 e2 = glm::dvec3(p2) - glm::dvec3(p0);
-        si.geometricNormal = glm::vec3(glm::normalize(glm::cross(e1, e2)));
-        si.shadingNormal = si.geometricNormal;
-        if (mesh.normals.size() == mesh.positions.size()) {
-            const glm::vec3 ns =
-                b0 * mesh.normals[tri.x] + b1 * mesh.normals[tri.y] + b2 * mesh.normals[tri.z];
-            const float len = glm::length(ns);
-            if (len > 0.f && std::isfinite(len)) {
-                si.shadingNormal = ns / len;
-                if (glm::dot(si.shadingNormal, si.geometricNormal) < 0.f)
-                    si.shadingNormal = -si.shadingNormal;
-            }
-        }
-        si.material = mesh.material;
-        si.layer = mesh.layer;
-        break;
-    }
-    case GeometryKind::Sphere: {
-        const Sphere &s = scene.spheres[hit.geometry];
-        // Reproject onto the sphere in double: the point is then exact up to the final rounding.
-        glm::dvec3 pObj = glm::dvec3(ray.origin) - glm::dvec3(s.center) +
-                          double(hit.t) * glm::dvec3(ray.direction);
-        pObj *= double(s.radius) / glm::length(pObj);
-        si.position = glm::vec3(glm::dvec3(s.center) + pObj);
-        si.positionError =
-            gamma(5) * glm::abs(glm::vec3(pObj)) + gamma(2) * glm::abs(si.position);
-        si.geometricNormal = glm::vec3(glm::normalize(pObj));
-        si.shadingNormal = si.geometricNormal;
-        si.material = s.material;
-        si.layer = s.layer;
-        break;
-    }
-    case GeometryKind::Plane: {
-        const Plane &pl = scene.planes[hit.geometry];
-        const glm::dvec3 n = glm::normalize(glm::dvec3(pl.normal));
-        const double len = glm::length(glm::dvec3(pl.normal));
-        // o + t·d in double, then projected onto the plane along its normal: the residual error
-        // is the float rounding of t (along the ray) and of the result.
-        glm::dvec3 p = glm::dvec3(ray.origin) + double(hit.t) * glm::dvec3(ray.direction);
-        p -= (glm::dot(n, p) - double(pl.offset) / len) * n;
-        si.position = glm::vec3(p);
-        const glm::vec3 td = hit.t * ray.direction;
-        si.positionError = gamma(3) * (glm::abs(si.position) + glm::abs(td));
-        si.geometricNormal = glm::vec3(n);
-        si.shadingNormal = si.geometricNormal;
-        si.material = pl.material;
-        si.layer = pl.layer;
-        break;
-    }
-    }
-    return si;
 }
 
 const Scene &Tracer::scene() const { return d->scene; }

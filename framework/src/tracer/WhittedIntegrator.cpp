@@ -200,7 +200,18 @@ glm::vec3 WhittedIntegrator::radiance(const Ray &primaryRay, const RayPolicy &po
 
 glm::vec3 WhittedIntegrator::radiance(const Ray &primaryRay, const RayPolicy &policy, const IntegratorPlan &plan,
                                       RayCounters &counters) const {
-    glm::vec3 c = trace(primaryRay, RayType::Primary, 0, policy, plan, counters);
+    return finishSample(trace(primaryRay, RayType::Primary, 0, policy, plan, counters), policy, plan, counters);
+}
+
+glm::vec3 WhittedIntegrator::radianceFromHit(const Ray &primaryRay, const Hit *primaryHit, const RayPolicy &policy,
+                                             const IntegratorPlan &plan, RayCounters &counters) const {
+    countRay(RayType::Primary, counters);
+    return finishSample(traceFromHit(primaryRay, RayType::Primary, 0, primaryHit, policy, plan, counters), policy,
+                        plan, counters);
+}
+
+glm::vec3 WhittedIntegrator::finishSample(glm::vec3 c, const RayPolicy &policy, const IntegratorPlan &plan,
+                                          RayCounters &counters) const {
     // The identity map can only turn −0 into +0, and a pixel's sum of samples starts at +0.
     if (plan.appliesColorMap)
         c = policy.color.matrix * c + policy.color.offset;
@@ -214,7 +225,10 @@ glm::vec3 WhittedIntegrator::radiance(const Ray &primaryRay, const RayPolicy &po
 }
 
 bool WhittedIntegrator::closestVisibleHit(const Ray &ray, const RayQuery &query, Hit &hit) const {
-    if (!m_tracer.closestHit(ray, query, hit)) return false;
+    return m_tracer.closestHit(ray, query, hit) && skipCutOutHits(ray, query, hit);
+}
+
+bool WhittedIntegrator::skipCutOutHits(const Ray &ray, const RayQuery &query, Hit &hit) const {
     if (!m_hasCutOutMaterials || !m_materials->isCutOut(hit)) return true;
     // A masked-out hit is not there: look again just past it.
     RayQuery next = query;
@@ -284,11 +298,19 @@ bool WhittedIntegrator::solidAround(const Ray &ray, const RayQuery &query, float
 
 glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, const RayPolicy &policy,
                                    const IntegratorPlan &plan, RayCounters &counters, float travelled) const {
+    countRay(type, counters);
+    Hit hit;
+    const bool found = m_tracer.closestHit(ray, policy.query(type), hit);
+    return traceFromHit(ray, type, depth, found ? &hit : nullptr, policy, plan, counters, travelled);
+}
+
+glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int depth, const Hit *closest,
+                                          const RayPolicy &policy, const IntegratorPlan &plan, RayCounters &counters,
+                                          float travelled) const {
     const Scene &scene = m_tracer.scene();
     const ShadingPolicy &shading = policy.shading;
     const RayQuery &query = policy.query(type);
     const bool isPrimary = type == RayType::Primary;
-    countRay(type, counters);
     const glm::vec3 d = glm::normalize(ray.direction);
     const float rayLength = glm::length(ray.direction);
     // Where a primary ray crosses a capped clip surface into a closed solid, it shows the cut
@@ -296,7 +318,8 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
     std::optional<detail::ClipCap> cap;
     Hit hit;
     SurfaceInteraction si;
-    const bool found = closestVisibleHit(ray, query, hit);
+    const bool found = closest && skipCutOutHits(ray, query, hit = *closest);
+    if (!found) hit = Hit{};
     if (isPrimary && detail::hasCappedClip(query)) {
         // The run of accepted points that holds the hit, or (no hit at all: a slab through a
         // solid) the first run, begins on a capped surface: is that point inside a solid?

@@ -1,6 +1,13 @@
 #include "PixelTracer_p.h"
 
+#include <mvcl/tracer/Hit.h>
+#include <mvcl/tracer/Tracer.h>
+
+#include <algorithm>
+#include <array>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 
 namespace mvcl::detail {
 
@@ -114,6 +121,69 @@ void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &sam
     for (const PolicyTerm &term : terms) ++m_costs[term.policy].pixels;
     m_samples += uint64_t(endSample - samples.count) * terms.size();
     samples.count = endSample;
+}
+
+void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t *endSample,
+                                  PixelSamples *samples) {
+    const int side = x1 - x0, count = side * (y1 - y0);
+    // The block's one policy, if every pixel has exactly one term and it is the same.
+    int shared = -1;
+    for (int i = 0; i < count; ++i) {
+        const std::span<const PolicyTerm> terms = m_map.terms(x0 + i % side, y0 + i / side);
+        if (terms.size() != 1 || (shared >= 0 && terms[0].policy != shared)) {
+            shared = -1;
+            break;
+        }
+        shared = terms[0].policy;
+    }
+    if (shared < 0 || count < 2) {
+        for (int i = 0; i < count; ++i) addSamples(x0 + i % side, y0 + i / side, endSample[i], samples[i]);
+        return;
+    }
+    const PixelPolicy &policy = m_map.policy(uint16_t(shared));
+    const IntegratorPlan &plan = m_plans[size_t(shared)];
+    const RayQuery &query = policy.ray.query(RayType::Primary);
+    const Tracer &tracer = m_integrator.tracer();
+    const int width = m_map.width(), height = m_map.height();
+    chargeRun(shared);
+    const uint64_t raysBefore = m_rays.total();
+    uint32_t first = UINT32_MAX, last = 0;
+    for (int i = 0; i < count; ++i)
+        if (samples[i].count < endSample[i]) {
+            first = std::min(first, samples[i].count);
+            last = std::max(last, endSample[i]);
+        }
+    std::array<Ray, Tracer::kPacketSize> rays;
+    std::array<Hit, Tracer::kPacketSize> hits;
+    std::array<int, Tracer::kPacketSize> pixelOf;
+    // Sample by sample: each pixel's sums still add its samples in order k = count, count + 1, …
+    for (uint32_t k = first; k < last; ++k) {
+        int lanes = 0;
+        for (int i = 0; i < count; ++i) {
+            if (k < samples[i].count || k >= endSample[i]) continue;
+            const int x = x0 + i % side, y = y0 + i / side;
+            const glm::vec2 p = policy.samplePosition(glm::vec2{float(x), float(y)} + sampleOffset(x, y, k, m_seed),
+                                                      width, height);
+            rays[size_t(lanes)] = m_camera.generateRay(p.x, p.y, width, height);
+            pixelOf[size_t(lanes++)] = i;
+        }
+        const uint32_t found = tracer.closestHits({rays.data(), size_t(lanes)}, query, {hits.data(), size_t(lanes)});
+        for (int j = 0; j < lanes; ++j) {
+            const glm::vec3 value = m_integrator.radianceFromHit(rays[size_t(j)], (found >> j) & 1u ? &hits[size_t(j)] : nullptr,
+                                                                 policy.ray, plan, m_rays);
+            PixelSamples &s = samples[pixelOf[size_t(j)]];
+            s.sum += value;
+            if ((k & 1u) == 0) s.evenSum += value;
+        }
+    }
+    m_costs[size_t(shared)].rays += m_rays.total() - raysBefore;
+    for (int i = 0; i < count; ++i) {
+        // As addSamples(): a pixel counts once per call, and only if it took samples.
+        if (samples[i].count >= endSample[i]) continue;
+        ++m_costs[size_t(shared)].pixels;
+        m_samples += endSample[i] - samples[i].count;
+        samples[i].count = endSample[i];
+    }
 }
 
 glm::vec3 PixelTracer::sampleAt(int x, int y, const glm::vec2 &position) {

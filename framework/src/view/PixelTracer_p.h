@@ -49,6 +49,14 @@ public:
 
     /// Adds samples [samples.count, endSample) of pixel (x, y) to `samples`, in order.
     void addSamples(int x, int y, uint32_t endSample, PixelSamples &samples);
+    /// Side of the pixel blocks whose primary rays share a packet (Tracer::kPacketSize = 4 × 4).
+    static constexpr int kBlockSide = 4;
+    /// addSamples() for each pixel of the block [x0, x1) × [y0, y1) (at most kBlockSide square),
+    /// `endSample` and `samples` one per pixel, row by row. Where every pixel of the block has one
+    /// and the same policy (no feathered edge), sample k of the pixels that take it goes through
+    /// the tracer as one packet of primary rays; otherwise pixel by pixel. Same sums bit for bit
+    /// as addSamples() pixel by pixel.
+    void addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t *endSample, PixelSamples *samples);
     /// One sample through the continuous raster position `position` under the policies of
     /// pixel (x, y) (previews: one ray per block of pixels).
     glm::vec3 sampleAt(int x, int y, const glm::vec2 &position);

@@ -5,6 +5,8 @@
 #include <mvcl/lens/LensStack.h>
 #include <mvcl/tracer/Tracer.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace mvcl {
@@ -305,26 +307,42 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
         detail::PixelTracer tracer(integrator, camera, map, settings.seed, stageSelectionOf(settings));
         const PixelRect r = tileRect(work[k]);
         uint64_t traced = 0;
-        for (int y = r.y0; y < r.y1 && !stopped.load(std::memory_order_relaxed); ++y) {
+        // In blocks of 4 × 4 pixels, whose primary rays share packets (PixelTracer::addBlockSamples).
+        constexpr int kSide = detail::PixelTracer::kBlockSide;
+        for (int by = r.y0; by < r.y1 && !stopped.load(std::memory_order_relaxed); by += kSide) {
             if (cancel.load(std::memory_order_relaxed) || timeIsUp()) {
                 stopped = true;
                 break;
             }
-            for (int x = r.x0; x < r.x1; ++x) {
-                const size_t i = size_t(y) * size_t(w) + size_t(x);
-                const uint32_t end = samplesToTake(i);
-                if (end <= samples[i].count) continue;
-                // An edit cancels between pixels: each pixel gets all of its new samples or none.
+            for (int bx = r.x0; bx < r.x1; bx += kSide) {
+                const int bx1 = std::min(bx + kSide, r.x1), by1 = std::min(by + kSide, r.y1);
+                std::array<uint32_t, kSide * kSide> end;
+                std::array<detail::PixelSamples, kSide * kSide> s;
+                int count = 0, taking = 0;
+                for (int y = by; y < by1; ++y)
+                    for (int x = bx; x < bx1; ++x, ++count) {
+                        const size_t i = size_t(y) * size_t(w) + size_t(x);
+                        end[size_t(count)] = samplesToTake(i);
+                        s[size_t(count)] = samples[i];
+                        taking += end[size_t(count)] > samples[i].count;
+                    }
+                if (!taking) continue;
+                // An edit cancels between blocks: each pixel gets all of its new samples or none.
                 if (cancel.load(std::memory_order_relaxed)) {
                     stopped = true;
                     break;
                 }
-                detail::PixelSamples s = samples[i];
-                tracer.addSamples(x, y, end, s);
-                samples[i] = s;
-                errors[i] = s.relativeError();
-                display.at(x, y) = s.mean();
-                ++traced;
+                tracer.addBlockSamples(bx, by, bx1, by1, end.data(), s.data());
+                count = 0;
+                for (int y = by; y < by1; ++y)
+                    for (int x = bx; x < bx1; ++x, ++count) {
+                        const size_t i = size_t(y) * size_t(w) + size_t(x);
+                        if (s[size_t(count)].count == samples[i].count) continue;
+                        samples[i] = s[size_t(count)];
+                        errors[i] = samples[i].relativeError();
+                        display.at(x, y) = samples[i].mean();
+                        ++traced;
+                    }
             }
         }
         tracer.endRun();

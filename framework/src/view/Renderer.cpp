@@ -8,6 +8,7 @@
 #include "PixelTracer_p.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <mutex>
@@ -51,13 +52,19 @@ RenderStats Renderer::render(const Camera &camera, const PolicyMap &policies,
         const int y0 = int(tile / size_t(tilesX)) * settings.tileSize;
         const int x1 = std::min(x0 + settings.tileSize, width);
         const int y1 = std::min(y0 + settings.tileSize, height);
-        for (int y = y0; y < y1; ++y) {
-            for (int x = x0; x < x1; ++x) {
-                detail::PixelSamples samples;
-                tracer.addSamples(x, y, uint32_t(settings.samplesPerPixel), samples);
-                target.at(x, y) = samples.mean();
+        // In blocks of 4 × 4 pixels, whose primary rays share packets (PixelTracer::addBlockSamples).
+        constexpr int kSide = detail::PixelTracer::kBlockSide;
+        std::array<uint32_t, kSide * kSide> end;
+        end.fill(uint32_t(settings.samplesPerPixel));
+        for (int by = y0; by < y1; by += kSide)
+            for (int bx = x0; bx < x1; bx += kSide) {
+                const int bx1 = std::min(bx + kSide, x1), by1 = std::min(by + kSide, y1);
+                std::array<detail::PixelSamples, kSide * kSide> samples{};
+                tracer.addBlockSamples(bx, by, bx1, by1, end.data(), samples.data());
+                int i = 0;
+                for (int y = by; y < by1; ++y)
+                    for (int x = bx; x < bx1; ++x) target.at(x, y) = samples[size_t(i++)].mean();
             }
-        }
         tracer.endRun();
         const int done = ++tilesDone;
         std::lock_guard lock(statsMutex);

@@ -13,7 +13,9 @@
 #include <mvcl/tracer/SurfaceInteraction.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
+#include <span>
 
 namespace mvcl {
 
@@ -50,6 +52,23 @@ public:
     bool closestHit(const Ray &ray, const RayQuery &query, Hit &hit) const;
     /// True if anything within the query is hit (shadow rays).
     bool anyHit(const Ray &ray, const RayQuery &query) const;
+    /// Most rays a packet query takes: a 4×4 tile.
+    static constexpr int kPacketSize = 16;
+    /// closestHit() of each ray under one shared query, traced together as a packet: for coherent
+    /// rays (the primary rays of a tile), which then share the walk down the BVH. The hits are
+    /// those of closestHit() ray by ray, bit for bit. Returns the bit mask of the rays that hit
+    /// (bit i: rays[i]; hits[i] is written for those only). Throws mvcl::Error("tracer", ...) when
+    /// rays.size() > kPacketSize or hits.size() < rays.size().
+    uint32_t closestHits(std::span<const Ray> rays, const RayQuery &query, std::span<Hit> hits) const;
+    /// anyHit() of each ray under one shared query, as a packet (shadow rays of a tile toward one
+    /// light). Returns the bit mask of the occluded rays; same answers as anyHit() ray by ray.
+    uint32_t anyHits(std::span<const Ray> rays, const RayQuery &query) const;
+
+    /// The instruction set traversal uses on this CPU, for benches and logs: "avx2" or "sse2"
+    /// for single rays; "avx512", "avx2" or "single rays" (no packet code for this CPU) for packets.
+    const char *singleRayIsa() const;
+    const char *packetIsa() const;
+
     /// Same answer as closestHit() by testing every primitive; for tests.
     bool closestHitBruteForce(const Ray &ray, const RayQuery &query, Hit &hit) const;
 

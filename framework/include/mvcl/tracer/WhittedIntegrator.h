@@ -36,6 +36,9 @@ public:
     WhittedIntegrator(const WhittedIntegrator &) = delete;
     WhittedIntegrator &operator=(const WhittedIntegrator &) = delete;
 
+    /// The tracer it traces with.
+    const Tracer &tracer() const { return m_tracer; }
+
     /// The stages `policy` needs in this scene. Compute it once per policy and render pass and
     /// pass it to every radiance() call under that policy.
     IntegratorPlan plan(const RayPolicy &policy, StageSelection selection) const;
@@ -48,11 +51,25 @@ public:
     /// (tests, PixelProbe), not for rendering many rays under one policy.
     glm::vec3 radiance(const Ray &primaryRay, const RayPolicy &policy, RayCounters &counters) const;
 
+    /// radiance() of a primary ray whose closest hit under policy.query(RayType::Primary) is
+    /// already known (Tracer::closestHits on a packet of primary rays): `primaryHit` is that hit,
+    /// null if the ray missed. The same value bit for bit as radiance(primaryRay, policy, plan,
+    /// counters), with the same rays counted.
+    glm::vec3 radianceFromHit(const Ray &primaryRay, const Hit *primaryHit, const RayPolicy &policy,
+                              const IntegratorPlan &plan, RayCounters &counters) const;
+
 private:
+    /// The colour stage and the non-finite check every sample ends with.
+    glm::vec3 finishSample(glm::vec3 c, const RayPolicy &policy, const IntegratorPlan &plan,
+                           RayCounters &counters) const;
     /// `travelled`: the distance from the camera to the ray's origin (a primary ray continued
     /// through translucent or peeled surfaces), for the depth false colour.
     glm::vec3 trace(const Ray &ray, RayType type, int depth, const RayPolicy &policy,
                     const IntegratorPlan &plan, RayCounters &counters, float travelled = 0.f) const;
+    /// trace() from the ray's closest hit under policy.query(type) (null: a miss), the ray
+    /// already counted.
+    glm::vec3 traceFromHit(const Ray &ray, RayType type, int depth, const Hit *closest, const RayPolicy &policy,
+                           const IntegratorPlan &plan, RayCounters &counters, float travelled = 0.f) const;
 
     /// Share (0 or 1) of an outline drawn at the primary ray `ray`: probe rays `edges.widthPixels`
     /// apart around it (WhittedIntegratorOutlines.cpp) find a silhouette, a boundary between two
@@ -67,6 +84,8 @@ private:
 
     /// closestHit() that skips hits an alpha mask cuts out.
     bool closestVisibleHit(const Ray &ray, const RayQuery &query, Hit &hit) const;
+    /// From the closest hit `hit`, the first one no alpha mask cuts out (false: none).
+    bool skipCutOutHits(const Ray &ray, const RayQuery &query, Hit &hit) const;
 
     /// Share of a light's intensity (0..1) that reaches the shadow ray's origin.
     float lightPassing(const Ray &shadowRay, float lightDistance, const RayQuery &shadowQuery,

@@ -1,0 +1,478 @@
+// Private: packet traversal of the wide BVH, 16 rays at once (a 4×4 tile of coherent rays), included
+// twice by Tracer.cpp: as namespace `packet_avx2` inside `#pragma GCC target("avx2")` (the 16 rays
+// as two 8-lane halves) and as `packet_avx512` inside `#pragma GCC target("avx512f")` (one 16-lane
+// register), chosen at run time. No include guard on purpose.
+//
+// Each child box is tested against all rays of the packet (ray lanes, not child lanes), with the
+// arithmetic of intersectBox() lane by lane: same operands, same order, same NaN rule. A ray
+// enters every box its own single-ray traversal could need, so the nearest hit in the total order
+// of hitPrecedes() (and layer priority's window, a function of the candidate set) is found
+// whatever order the packet visits the leaves in: the results are those of Tracer::closestHit()
+// bit for bit. Leaves run the watertight test with the rays in the lanes (one triangle against
+// all rays: intersectAcrossRays, the 4-wide kernel's operations per ray and triangle), or, for
+// layer priority (which needs the error bound) and leaves holding spheres, ray by ray through
+// testLeaf; either way every t and barycentric is the single-ray arithmetic.
+//
+// Each walk shares one near/far slab choice: tracePacket() splits the rays by direction octant.
+// Expects MVCL_PACKET_NS, MVCL_PACKET_AVX512 (0 or 1) and the helpers of Tracer.cpp.
+
+namespace MVCL_PACKET_NS {
+
+using detail::kPacketLanes;
+using detail::kWidth;
+using detail::PacketRays;
+using detail::RayContext;
+using detail::WideLeaf;
+using detail::WideNode;
+
+/// Sixteen floats, one per ray of the packet.
+struct Lanes {
+#if MVCL_PACKET_AVX512
+    __m512 v;
+    static Lanes load(const float *p) { return {_mm512_load_ps(p)}; }
+    static Lanes all(float x) { return {_mm512_set1_ps(x)}; }
+    void store(float *p) const { _mm512_store_ps(p, v); }
+#else
+    __m256 lo, hi;
+    static Lanes load(const float *p) { return {_mm256_load_ps(p), _mm256_load_ps(p + 8)}; }
+    static Lanes all(float x) { return {_mm256_set1_ps(x), _mm256_set1_ps(x)}; }
+    void store(float *p) const {
+        _mm256_store_ps(p, lo);
+        _mm256_store_ps(p + 8, hi);
+    }
+#endif
+};
+
+#if MVCL_PACKET_AVX512
+inline Lanes sub(Lanes a, Lanes b) { return {_mm512_sub_ps(a.v, b.v)}; }
+inline Lanes mul(Lanes a, Lanes b) { return {_mm512_mul_ps(a.v, b.v)}; }
+inline Lanes div(Lanes a, Lanes b) { return {_mm512_div_ps(a.v, b.v)}; }
+inline Lanes add(Lanes a, Lanes b) { return {_mm512_add_ps(a.v, b.v)}; }
+/// The sign bit cleared / flipped (exact, as fabs and unary minus).
+inline Lanes abs(Lanes a) {
+    return {_mm512_castsi512_ps(_mm512_and_si512(_mm512_castps_si512(a.v), _mm512_set1_epi32(0x7fffffff)))};
+}
+inline Lanes negate(Lanes a) {
+    return {_mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a.v), _mm512_set1_epi32(int(0x80000000u))))};
+}
+/// Bit i: a[i] P b[i] for the _CMP_ predicate P.
+template <int P>
+inline unsigned compare(Lanes a, Lanes b) { return _mm512_cmp_ps_mask(a.v, b.v, P); }
+/// a·b rounded on its own, never fused with a following add (FloatBits.h, unfused()).
+inline Lanes mulUnfused(Lanes a, Lanes b) {
+    __m512 v = _mm512_mul_ps(a.v, b.v);
+    __asm__("" : "+v"(v));
+    return {v};
+}
+/// a in the lanes of `bits`, b elsewhere.
+inline Lanes select(unsigned bits, Lanes a, Lanes b) { return {_mm512_mask_mov_ps(b.v, __mmask16(bits), a.v)}; }
+/// Bit i: the sign bit of a[i] is set.
+inline unsigned signBits(Lanes a) {
+    const __m512i bits = _mm512_castps_si512(a.v);
+    return _mm512_test_epi32_mask(bits, _mm512_set1_epi32(int(0x80000000u)));
+}
+// vmaxps/vminps return the second operand when either is NaN, as in intersectBox. The zero-masked
+// forms with every lane set are the plain instruction; GCC 12's _mm512_max_ps passes an
+// "undefined" source that -Wmaybe-uninitialized reports.
+inline Lanes max(Lanes a, Lanes b) { return {_mm512_maskz_max_ps(__mmask16(0xffff), a.v, b.v)}; }
+inline Lanes min(Lanes a, Lanes b) { return {_mm512_maskz_min_ps(__mmask16(0xffff), a.v, b.v)}; }
+/// Bit i: a[i] <= b[i] (false for NaN).
+inline unsigned lessEqual(Lanes a, Lanes b) { return _mm512_cmp_ps_mask(a.v, b.v, _CMP_LE_OQ); }
+/// a in the lanes of `bits`, NaN elsewhere (a NaN entry distance never passes lessEqual).
+inline Lanes keep(unsigned bits, Lanes a) {
+    return {_mm512_mask_mov_ps(_mm512_set1_ps(std::numeric_limits<float>::quiet_NaN()), __mmask16(bits), a.v)};
+}
+/// Smallest lane of `bits` (not empty).
+inline float minimum(unsigned bits, Lanes a) {
+    // By hand, zero-masked forms throughout (see max()): _mm512_mask_reduce_min_ps trips the
+    // same warning.
+    constexpr __mmask16 all = 0xffff;
+    __m512 m = _mm512_mask_mov_ps(_mm512_set1_ps(detail::kInfinity), __mmask16(bits), a.v);
+    m = _mm512_maskz_min_ps(all, m, _mm512_maskz_shuffle_f32x4(all, m, m, _MM_SHUFFLE(1, 0, 3, 2)));
+    m = _mm512_maskz_min_ps(all, m, _mm512_maskz_shuffle_f32x4(all, m, m, _MM_SHUFFLE(2, 3, 0, 1)));
+    m = _mm512_maskz_min_ps(all, m, _mm512_maskz_permute_ps(all, m, _MM_SHUFFLE(1, 0, 3, 2)));
+    m = _mm512_maskz_min_ps(all, m, _mm512_maskz_permute_ps(all, m, _MM_SHUFFLE(2, 3, 0, 1)));
+    return _mm512_cvtss_f32(m);
+}
+#else
+inline Lanes sub(Lanes a, Lanes b) { return {_mm256_sub_ps(a.lo, b.lo), _mm256_sub_ps(a.hi, b.hi)}; }
+inline Lanes mul(Lanes a, Lanes b) { return {_mm256_mul_ps(a.lo, b.lo), _mm256_mul_ps(a.hi, b.hi)}; }
+inline Lanes div(Lanes a, Lanes b) { return {_mm256_div_ps(a.lo, b.lo), _mm256_div_ps(a.hi, b.hi)}; }
+inline unsigned signBits(Lanes a) {
+    return unsigned(_mm256_movemask_ps(a.lo)) | unsigned(_mm256_movemask_ps(a.hi)) << 8;
+}
+inline Lanes add(Lanes a, Lanes b) { return {_mm256_add_ps(a.lo, b.lo), _mm256_add_ps(a.hi, b.hi)}; }
+inline Lanes abs(Lanes a) {
+    const __m256 m = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+    return {_mm256_and_ps(a.lo, m), _mm256_and_ps(a.hi, m)};
+}
+inline Lanes negate(Lanes a) {
+    const __m256 m = _mm256_castsi256_ps(_mm256_set1_epi32(int(0x80000000u)));
+    return {_mm256_xor_ps(a.lo, m), _mm256_xor_ps(a.hi, m)};
+}
+template <int P>
+inline unsigned compare(Lanes a, Lanes b) {
+    return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a.lo, b.lo, P))) |
+           unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a.hi, b.hi, P))) << 8;
+}
+inline Lanes mulUnfused(Lanes a, Lanes b) {
+    // FloatBits.h's unfused() is compiled outside this instruction set: its own barrier here.
+    __m256 lo = _mm256_mul_ps(a.lo, b.lo), hi = _mm256_mul_ps(a.hi, b.hi);
+    __asm__("" : "+x"(lo), "+x"(hi));
+    return {lo, hi};
+}
+inline Lanes max(Lanes a, Lanes b) { return {_mm256_max_ps(a.lo, b.lo), _mm256_max_ps(a.hi, b.hi)}; }
+inline Lanes min(Lanes a, Lanes b) { return {_mm256_min_ps(a.lo, b.lo), _mm256_min_ps(a.hi, b.hi)}; }
+inline unsigned lessEqual(Lanes a, Lanes b) {
+    return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a.lo, b.lo, _CMP_LE_OQ))) |
+           unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a.hi, b.hi, _CMP_LE_OQ))) << 8;
+}
+inline __m256 laneMask(unsigned bits) {
+    const __m256i lane = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(bits)), lane), lane));
+}
+inline Lanes select(unsigned bits, Lanes a, Lanes b) {
+    return {_mm256_blendv_ps(b.lo, a.lo, laneMask(bits & 0xffu)), _mm256_blendv_ps(b.hi, a.hi, laneMask(bits >> 8))};
+}
+inline Lanes keep(unsigned bits, Lanes a) {
+    const __m256 nan = _mm256_set1_ps(std::numeric_limits<float>::quiet_NaN());
+    return {_mm256_blendv_ps(nan, a.lo, laneMask(bits & 0xffu)), _mm256_blendv_ps(nan, a.hi, laneMask(bits >> 8))};
+}
+inline float minimum(unsigned bits, Lanes a) {
+    const __m256 inf = _mm256_set1_ps(detail::kInfinity);
+    __m256 m = _mm256_min_ps(_mm256_blendv_ps(inf, a.lo, laneMask(bits & 0xffu)),
+                             _mm256_blendv_ps(inf, a.hi, laneMask(bits >> 8)));
+    __m128 h = _mm_min_ps(_mm256_castps256_ps128(m), _mm256_extractf128_ps(m, 1));
+    h = _mm_min_ps(h, _mm_movehl_ps(h, h));
+    h = _mm_min_ss(h, _mm_shuffle_ps(h, h, 1));
+    return _mm_cvtss_f32(h);
+}
+#endif
+
+/// The per-ray constants of the node test, in ray lanes.
+struct PacketConstants {
+    Lanes ox, oy, oz; ///< origin
+    Lanes ix, iy, iz; ///< RayContext::invDir
+    Lanes fx, fy, fz; ///< RayContext::invDirFar
+    Lanes tLow;       ///< RayContext::tLow
+};
+
+/// The watertight test's per-ray constants (WatertightRay) in ray lanes, for the rays whose
+/// direction has its largest component on axis kz.
+struct Shear {
+    int kx = 0, ky = 0, kz = 0;
+    Lanes ox, oy, oz; ///< origin, permuted like the rays
+    Lanes sx, sy, sz;
+};
+
+/// WatertightRay's constants of the rays with dominant axis kz: the same divisions, lane by lane.
+inline Shear makeShear(const PacketRays &p, int kz) {
+    Shear h;
+    h.kz = kz;
+    h.kx = kz + 1 == 3 ? 0 : kz + 1;
+    h.ky = h.kx + 1 == 3 ? 0 : h.kx + 1;
+    const float *o[3] = {p.ox, p.oy, p.oz};
+    const float *d[3] = {p.dx, p.dy, p.dz};
+    h.ox = Lanes::load(o[h.kx]), h.oy = Lanes::load(o[h.ky]), h.oz = Lanes::load(o[h.kz]);
+    const Lanes dz = Lanes::load(d[h.kz]);
+    h.sx = div(negate(Lanes::load(d[h.kx])), dz);
+    h.sy = div(negate(Lanes::load(d[h.ky])), dz);
+    h.sz = div(Lanes::all(1.f), dz);
+    return h;
+}
+
+/// watertightIntersect4() turned around: triangle `lane` of `b` against the rays of `rays` (ray
+/// lanes instead of triangle lanes), the same IEEE operations per (ray, triangle) in the same order.
+/// Returns the rays hit (t, b1, b2 stored for them, each within its tCap); the rays with a zero
+/// edge function are left out and returned in `onEdge`, for the scalar test and its double
+/// fallback.
+template <bool Barycentrics>
+inline unsigned intersectAcrossRays(const Shear &r, const detail::PrimBlock &b, int lane, unsigned rays,
+                                    const Lanes &tCap, float *tOut, float *b1Out, float *b2Out, unsigned &onEdge) {
+    const Lanes zero = Lanes::all(0.f);
+    const Lanes p0z = sub(Lanes::all(b.v[0][r.kz][lane]), r.oz);
+    const Lanes p1z = sub(Lanes::all(b.v[1][r.kz][lane]), r.oz);
+    const Lanes p2z = sub(Lanes::all(b.v[2][r.kz][lane]), r.oz);
+    const Lanes p0x = add(sub(Lanes::all(b.v[0][r.kx][lane]), r.ox), mulUnfused(r.sx, p0z));
+    const Lanes p0y = add(sub(Lanes::all(b.v[0][r.ky][lane]), r.oy), mulUnfused(r.sy, p0z));
+    const Lanes p1x = add(sub(Lanes::all(b.v[1][r.kx][lane]), r.ox), mulUnfused(r.sx, p1z));
+    const Lanes p1y = add(sub(Lanes::all(b.v[1][r.ky][lane]), r.oy), mulUnfused(r.sy, p1z));
+    const Lanes p2x = add(sub(Lanes::all(b.v[2][r.kx][lane]), r.ox), mulUnfused(r.sx, p2z));
+    const Lanes p2y = add(sub(Lanes::all(b.v[2][r.ky][lane]), r.oy), mulUnfused(r.sy, p2z));
+    const Lanes e0 = sub(mulUnfused(p1x, p2y), mulUnfused(p1y, p2x));
+    const Lanes e1 = sub(mulUnfused(p2x, p0y), mulUnfused(p2y, p0x));
+    const Lanes e2 = sub(mulUnfused(p0x, p1y), mulUnfused(p0y, p1x));
+    onEdge = (compare<_CMP_EQ_OQ>(e0, zero) | compare<_CMP_EQ_OQ>(e1, zero) | compare<_CMP_EQ_OQ>(e2, zero)) & rays;
+    const unsigned anyNeg = compare<_CMP_LT_OQ>(e0, zero) | compare<_CMP_LT_OQ>(e1, zero) | compare<_CMP_LT_OQ>(e2, zero);
+    const unsigned anyPos = compare<_CMP_GT_OQ>(e0, zero) | compare<_CMP_GT_OQ>(e1, zero) | compare<_CMP_GT_OQ>(e2, zero);
+    const Lanes det = add(add(e0, e1), e2);
+    unsigned candidates = rays & ~onEdge & ~(anyNeg & anyPos) & ~compare<_CMP_EQ_OQ>(det, zero);
+    if (!candidates) return 0;
+    const Lanes z0 = mulUnfused(r.sz, p0z), z1 = mulUnfused(r.sz, p1z), z2 = mulUnfused(r.sz, p2z);
+    const Lanes tScaled = add(add(mulUnfused(e0, z0), mulUnfused(e1, z1)), mulUnfused(e2, z2));
+    const Lanes bound = mulUnfused(mul(tCap, Lanes::all(detail::kEarlyRejectSlack)), det);
+    const unsigned detNeg = compare<_CMP_LT_OQ>(det, zero), detPos = compare<_CMP_GT_OQ>(det, zero);
+    candidates &= ~((detNeg & (compare<_CMP_GE_OQ>(tScaled, zero) | compare<_CMP_LT_OQ>(tScaled, bound))) |
+                    (detPos & (compare<_CMP_LE_OQ>(tScaled, zero) | compare<_CMP_GT_OQ>(tScaled, bound))));
+    if (!candidates) return 0;
+    const Lanes invDet = div(Lanes::all(1.f), det);
+    const Lanes t = mulUnfused(tScaled, invDet);
+    // Conservative t > δt, term by term as in watertightIntersect4().
+    const Lanes maxZt = max(max(abs(z0), abs(z1)), abs(z2));
+    const Lanes deltaZ = mulUnfused(Lanes::all(gamma(3)), maxZt);
+    const Lanes maxXt = max(max(abs(p0x), abs(p1x)), abs(p2x));
+    const Lanes maxYt = max(max(abs(p0y), abs(p1y)), abs(p2y));
+    const Lanes maxPz = max(max(abs(p0z), abs(p1z)), abs(p2z));
+    const Lanes deltaX = mulUnfused(Lanes::all(gamma(5)), add(maxXt, mulUnfused(abs(r.sx), maxPz)));
+    const Lanes deltaY = mulUnfused(Lanes::all(gamma(5)), add(maxYt, mulUnfused(abs(r.sy), maxPz)));
+    const Lanes deltaE = mulUnfused(
+        Lanes::all(2.f), add(add(mulUnfused(mulUnfused(Lanes::all(gamma(2)), maxXt), maxYt), mulUnfused(deltaY, maxXt)),
+                             mulUnfused(deltaX, maxYt)));
+    const Lanes maxE = max(max(abs(e0), abs(e1)), abs(e2));
+    const Lanes deltaT = mulUnfused(
+        mulUnfused(Lanes::all(3.f), add(add(mulUnfused(mulUnfused(Lanes::all(gamma(3)), maxE), maxZt),
+                                            mulUnfused(deltaE, maxZt)),
+                                        mulUnfused(deltaZ, maxE))),
+        abs(invDet));
+    const unsigned hits = candidates & compare<_CMP_GT_OQ>(t, zero) & compare<_CMP_NLE_UQ>(t, deltaT);
+    if (hits) {
+        t.store(tOut);
+        if (Barycentrics) {
+            mul(e1, invDet).store(b1Out);
+            mul(e2, invDet).store(b2Out);
+        }
+    }
+    return hits;
+}
+
+/// testLeaf() for every ray of `active` at once, triangle by triangle (leaves without spheres,
+/// closest-hit states that ignore the error bound). Same candidates, so the same results.
+/// Returns the rays whose result changed (closest hit) or that are occluded (any hit), with
+/// p.tCap and p.tHigh updated for them.
+template <bool AnyHit, class Bests>
+unsigned leafAcrossRays(uint32_t leaf, unsigned active, const detail::PrimBlock *blocks, const detail::PrimInfo *info,
+                        const Shear *shears, unsigned shearLanes[3], PacketSetup &s, Bests &best) {
+    PacketRays &p = s.p;
+    const uint32_t first = WideLeaf::firstBlock(leaf), last = first + WideLeaf::blockCount(leaf);
+    alignas(64) float t[kPacketLanes], b1[kPacketLanes], b2[kPacketLanes];
+    unsigned changed = 0;
+    for (int kz = 0; kz < 3; ++kz) {
+        unsigned rays = active & shearLanes[kz];
+        if (!rays) continue;
+        const Shear &shear = shears[kz];
+        for (uint32_t bi = first; bi < last; ++bi) {
+            const detail::PrimBlock &block = blocks[bi];
+            for (unsigned lanes = unsigned(triangleLanes(block, s.query->layerMask)); lanes; lanes &= lanes - 1) {
+                const int lane = std::countr_zero(lanes);
+                unsigned onEdge = 0;
+                unsigned hits = intersectAcrossRays<!AnyHit>(shear, block, lane, rays, Lanes::load(p.tCap), t, b1, b2, onEdge);
+                // A hit of ray i at (t, u, v): the query's range and clips, then the closest-hit state.
+                auto take = [&](int i, float ti, float u, float v) {
+                    const RayContext &c = s.context(i);
+                    if (!c.acceptsT(ti)) return;
+                    if (AnyHit) {
+                        if (!c.acceptsPoint(ti)) return;
+                        changed |= 1u << i;
+                        rays &= ~(1u << i);
+                        p.tHigh[i] = -detail::kInfinity;
+                        return;
+                    }
+                    if (!best[i].offer(c, triangleCandidate(info[4 * bi + unsigned(lane)], ti, u, v), 0.f)) return;
+                    changed |= 1u << i;
+                    p.tCap[i] = std::min(c.tMax, best[i].cap());
+                    p.tHigh[i] = p.tCap[i] * detail::kTraversalSlackUp;
+                };
+                for (; hits; hits &= hits - 1) {
+                    const int i = std::countr_zero(hits);
+                    take(i, t[i], b1[i], b2[i]);
+                }
+                for (; onEdge; onEdge &= onEdge - 1) {
+                    const int i = std::countr_zero(onEdge);
+                    s.context(i);
+                    TriangleHit h;
+                    if (detail::watertightIntersect(*s.wrays[i], block.vertex(lane, 0), block.vertex(lane, 1),
+                                            block.vertex(lane, 2), p.tCap[i], h))
+                        take(i, h.t, h.b1, h.b2);
+                }
+                if (AnyHit && !rays) break;
+            }
+            if (AnyHit && !rays) break;
+        }
+    }
+    return changed;
+}
+
+/// Whether leaves are tested across rays (leafAcrossRays): any hit, and closest-hit states that
+/// ignore the error bound (NearestHit); layer priority goes ray by ray through testLeaf().
+template <bool AnyHit, class Bests>
+constexpr bool acrossRays() {
+    return AnyHit || !std::remove_reference_t<decltype(std::declval<Bests &>()[0])>::kUsesTError;
+}
+
+/// The walk of the rays of `lanes`, which all entered the root box and share the slab order
+/// `near`/`far`: closest hit (AnyHit = false: offers candidates to best[i], ray i's NearestHit or
+/// LayerPriorityHit, and returns the bits of the rays whose result changed) or any hit (returns
+/// the bits of the rays that hit something). s.p.tHigh holds each ray's box culling bound and is
+/// kept up to date. Flattened: the leaf test and the triangle kernel are inlined here, in this
+/// instruction set, instead of being called.
+template <bool AnyHit, class Bests>
+__attribute__((flatten)) unsigned walk(const detail::WideBvh &wide, unsigned lanes, const int near[3],
+                                       const int far[3], const PacketConstants &k, const Shear *shears,
+                                       unsigned shearLanes[3], PacketSetup &s, Bests &best) {
+    PacketRays &p = s.p;
+    const uint32_t layerMask = s.query->layerMask;
+    const WideNode *nodes = wide.nodes.get();
+    const detail::PrimBlock *blocks = wide.blocks.get();
+    const detail::PrimInfo *info = wide.info.get();
+    const Lanes ox = k.ox, oy = k.oy, oz = k.oz, ix = k.ix, iy = k.iy, iz = k.iz, fx = k.fx, fy = k.fy, fz = k.fz;
+    const Lanes tLow = k.tLow;
+    Lanes tHigh = Lanes::load(p.tHigh);
+
+    // A node pushes at most kWidth − 1 children (the nearest goes straight on): the bound of the
+    // single-ray stack (kStackSize) holds.
+    alignas(64) float stackT[kStackSize][kPacketLanes];
+    uint32_t stackRef[kStackSize];
+    int sp = 0;
+    uint32_t cur = wide.root;
+    unsigned active = lanes;
+    unsigned result = 0;
+    for (;;) {
+        if (WideLeaf::isLeaf(cur)) {
+            bool changed = false;
+            if (acrossRays<AnyHit, Bests>() && !WideLeaf::hasSpheres(cur)) {
+                const unsigned bits = leafAcrossRays<AnyHit>(cur, active, blocks, info, shears, shearLanes, s, best);
+                result |= bits;
+                changed = bits != 0;
+            } else
+            for (unsigned rest = active; rest; rest &= rest - 1) {
+                const int i = std::countr_zero(rest);
+                const RayContext &c = s.context(i);
+                if (!testLeaf<AnyHit>(cur, blocks, info, c, *s.wray4[i], best[i])) continue;
+                result |= 1u << i;
+                changed = true;
+                // An occluded ray is done: −∞ keeps it out of every box from now on.
+                p.tCap[i] = AnyHit ? c.tMax : std::min(c.tMax, best[i].cap());
+                p.tHigh[i] = AnyHit ? -detail::kInfinity : p.tCap[i] * detail::kTraversalSlackUp;
+            }
+            if (changed) {
+                if (AnyHit && result == lanes) return result;
+                tHigh = Lanes::load(p.tHigh);
+            }
+        } else {
+            const WideNode &n = nodes[cur];
+            Lanes tNear[kWidth];
+            unsigned hit[kWidth];
+            float key[kWidth];
+            int order[kWidth];
+            int count = 0;
+            for (int lane = 0; lane < kWidth; ++lane) {
+                if (!(n.layerMask[lane] & layerMask)) continue;
+                const Lanes tx0 = mul(sub(Lanes::all(n.bounds[near[0]][lane]), ox), ix);
+                const Lanes ty0 = mul(sub(Lanes::all(n.bounds[near[1]][lane]), oy), iy);
+                const Lanes tz0 = mul(sub(Lanes::all(n.bounds[near[2]][lane]), oz), iz);
+                const Lanes tx1 = mul(sub(Lanes::all(n.bounds[far[0]][lane]), ox), fx);
+                const Lanes ty1 = mul(sub(Lanes::all(n.bounds[far[1]][lane]), oy), fy);
+                const Lanes tz1 = mul(sub(Lanes::all(n.bounds[far[2]][lane]), oz), fz);
+                Lanes tn = max(tx0, tLow);
+                tn = max(ty0, tn);
+                tn = max(tz0, tn);
+                Lanes tf = min(tx1, tHigh);
+                tf = min(ty1, tf);
+                tf = min(tz1, tf);
+                const unsigned bits = lessEqual(tn, tf) & active;
+                if (!bits) continue;
+                tNear[lane] = tn;
+                hit[lane] = bits;
+                // Nearest-first by the packet's nearest entry (any order gives the same hits).
+                key[lane] = AnyHit ? 0.f : minimum(bits, tn);
+                int j = count++;
+                while (j > 0 && key[order[j - 1]] < key[lane]) {
+                    order[j] = order[j - 1];
+                    --j;
+                }
+                order[j] = lane;
+            }
+            if (count) {
+                // order[] runs from the farthest to the nearest: the nearest goes straight on.
+                for (int j = 0; j + 1 < count; ++j) {
+                    const int lane = order[j];
+                    keep(hit[lane], tNear[lane]).store(stackT[sp]);
+                    stackRef[sp++] = n.child[lane];
+                }
+                const int lane = order[count - 1];
+                cur = n.child[lane];
+                active = hit[lane];
+                continue;
+            }
+        }
+        // Pop the nearest pending subtree that some ray still needs.
+        for (;;) {
+            if (sp == 0) return result;
+            --sp;
+            active = lessEqual(Lanes::load(stackT[sp]), tHigh) & lanes;
+            if (active) {
+                cur = stackRef[sp];
+                break;
+            }
+        }
+    }
+}
+
+/// The packet query over the rays of `lanes` (s.valid or part of it): the slab constants of
+/// every ray at once (the same IEEE operations as RayContext's, so the same values), the root box
+/// test (intersectBox lane by lane), then one walk per direction octant. Returns as walk().
+template <bool AnyHit, class Bests>
+unsigned tracePacket(const detail::WideBvh &wide, unsigned lanes, PacketSetup &s, Bests &best) {
+    const RayQuery &q = *s.query;
+    if (wide.blockCount == 0 || !(wide.rootMask & q.layerMask) || !lanes) return 0;
+    PacketRays &p = s.p;
+    PacketConstants k;
+    k.ox = Lanes::load(p.ox), k.oy = Lanes::load(p.oy), k.oz = Lanes::load(p.oz);
+    const Lanes one = Lanes::all(1.f), farScale = Lanes::all(detail::kBoxFarScale);
+    k.ix = div(one, Lanes::load(p.dx)), k.iy = div(one, Lanes::load(p.dy)), k.iz = div(one, Lanes::load(p.dz));
+    k.fx = mul(k.ix, farScale), k.fy = mul(k.iy, farScale), k.fz = mul(k.iz, farScale);
+    k.tLow = Lanes::all(q.tMin > 0.f ? q.tMin * detail::kTraversalSlackDown : 0.f);
+    const float tHigh = q.tMax * detail::kTraversalSlackUp;
+    // IEEE division keeps the sign of zero, so the sign of 1/d picks the slabs as in RayContext.
+    const unsigned negative[3] = {signBits(k.ix), signBits(k.iy), signBits(k.iz)};
+    const float *root = wide.rootBounds;
+    auto slab = [&](int axis, bool nearSide) {
+        const unsigned neg = negative[axis];
+        return nearSide ? select(neg, Lanes::all(root[axis + 3]), Lanes::all(root[axis]))
+                        : select(neg, Lanes::all(root[axis]), Lanes::all(root[axis + 3]));
+    };
+    Lanes tn = max(mul(sub(slab(0, true), k.ox), k.ix), k.tLow);
+    tn = max(mul(sub(slab(1, true), k.oy), k.iy), tn);
+    tn = max(mul(sub(slab(2, true), k.oz), k.iz), tn);
+    Lanes tf = min(mul(sub(slab(0, false), k.ox), k.fx), Lanes::all(tHigh));
+    tf = min(mul(sub(slab(1, false), k.oy), k.fy), tf);
+    tf = min(mul(sub(slab(2, false), k.oz), k.fz), tf);
+    const unsigned entering = lessEqual(tn, tf) & lanes;
+    for (int i = 0; i < kPacketLanes; ++i) {
+        p.tHigh[i] = tHigh;
+        p.tCap[i] = q.tMax;
+    }
+    // The watertight constants of each dominant axis the entering rays have (usually one).
+    Shear shears[3];
+    unsigned shearLanes[3] = {};
+    if (acrossRays<AnyHit, Bests>())
+        for (int axis = 0; axis < 3; ++axis) {
+            shearLanes[axis] = s.dominantAxisLanes[axis] & entering;
+            if (shearLanes[axis]) shears[axis] = makeShear(p, axis);
+        }
+    unsigned result = 0;
+    for (int octant = 0; octant < 8; ++octant) {
+        unsigned group = entering;
+        int near[3], far[3];
+        for (int axis = 0; axis < 3; ++axis) {
+            const bool neg = (octant >> axis) & 1;
+            group &= neg ? negative[axis] : ~negative[axis];
+            near[axis] = neg ? axis + 3 : axis;
+            far[axis] = neg ? axis : axis + 3;
+        }
+        if (group) result |= walk<AnyHit>(wide, group, near, far, k, shears, shearLanes, s, best);
+    }
+    return result;
+}
+
+} // namespace MVCL_PACKET_NS
