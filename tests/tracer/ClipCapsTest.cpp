@@ -8,6 +8,8 @@
 #include <mvcl/tracer/WhittedIntegrator.h>
 #include <mvcl/view/Camera.h>
 
+#include "TestMeshes.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -20,22 +22,13 @@ namespace {
 
 constexpr int kSize = 48;
 
-/// An axis-aligned box, four vertices per face, counter-clockwise seen from outside.
+/// A closed box of `material` in `layer`.
 TriangleMesh box(const glm::vec3 &lo, const glm::vec3 &hi, uint32_t material, int layer) {
-    TriangleMesh mesh;
+    TriangleMesh mesh = test::splitFaceBox(lo, hi);
     mesh.name = "box";
     mesh.material = material;
     mesh.layer = layer;
     mesh.layerSource = LayerSource::Builtin;
-    const auto corner = [&](int i) { return glm::vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z); };
-    const std::array<std::array<int, 4>, 6> faces{{{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                                   {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}}};
-    for (const auto &face : faces) {
-        const uint32_t base = uint32_t(mesh.positions.size());
-        for (const int c : face) mesh.positions.push_back(corner(c));
-        mesh.indices.push_back({base, base + 1, base + 2});
-        mesh.indices.push_back({base, base + 2, base + 3});
-    }
     return mesh;
 }
 
