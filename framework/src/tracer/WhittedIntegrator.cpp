@@ -316,10 +316,10 @@ glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int dept
     // Where a primary ray crosses a capped clip surface into a closed solid, it shows the cut
     // face there, as a solid face of that solid's material, in front of whatever lies inside.
     std::optional<detail::ClipCap> cap;
-    Hit hit;
-    SurfaceInteraction si;
-    const bool found = closest && skipCutOutHits(ray, query, hit = *closest);
+    Hit hit = closest ? *closest : Hit{};
+    const bool found = closest && skipCutOutHits(ray, query, hit);
     if (!found) hit = Hit{};
+    SurfaceInteraction si;
     if (isPrimary && detail::hasCappedClip(query)) {
         // The run of accepted points that holds the hit, or (no hit at all: a slab through a
         // solid) the first run, begins on a capped surface: is that point inside a solid?
@@ -392,11 +392,12 @@ glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int dept
     // Lines go over the surface's colour, which then blends with what lies behind it.
     const auto shown = [&](const glm::vec3 &surfaceColor) {
         glm::vec3 front = surfaceColor;
-        if (isPrimary && shading.edges.mode != EdgeLineMode::Off) {
+        // A cap is no surface of the mesh its hit lies on: it gets no lines of its own.
+        if (isPrimary && !cap && shading.edges.mode != EdgeLineMode::Off) {
             float lines = 0.f;
             if (shading.edges.mode == EdgeLineMode::Outlines)
                 lines = outlineCoverage(ray, query, &hit, shading.edges, counters);
-            else if (!cap && hit.kind == GeometryKind::Triangle)
+            else if (hit.kind == GeometryKind::Triangle)
                 lines = detail::triangleEdgeCoverage(scene.meshes[hit.geometry], hit, coneWidth,
                                                      shading.edges.widthPixels);
             front = glm::mix(front, shading.edges.color, lines);
