@@ -17,7 +17,6 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <ranges>
 
 namespace mvcl {
 
@@ -119,7 +118,7 @@ WhittedIntegrator::WhittedIntegrator(const Tracer &tracer)
         for (const glm::vec3 &p : mesh.positions) solid.bounds.expand(p);
         solid.layers |= layerBit(layerOfGeometry(mesh.layer));
     }
-    for (const SolidBounds &solid : solids | std::views::values) m_solidBounds.push_back(solid);
+    for (const auto &[key, solid] : solids) m_solidBounds.push_back(solid);
     for (const Sphere &sphere : scene.spheres)
         m_solidBounds.push_back({{sphere.center - glm::vec3(std::abs(sphere.radius)), sphere.center + glm::vec3(std::abs(sphere.radius))},
                                  layerBit(layerOfGeometry(sphere.layer))});
