@@ -6,9 +6,12 @@
 #include <mvcl/view/Framebuffer.h>
 #include <mvcl/view/ImageIO.h>
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 namespace mvcl::test {
@@ -44,3 +47,18 @@ inline bool updateGoldenRequested() {
 }
 
 } // namespace mvcl::test
+
+/// In a test body: compares the image file `rendered` with the file `golden` (a pixel differs
+/// when a channel is off by more than 8 of 255; at most 0.2 % may), or, under
+/// MVCL_UPDATE_GOLDEN=1, copies `rendered` over `golden` and skips the test.
+#define MVCL_EXPECT_MATCHES_GOLDEN(rendered, golden)                                                              \
+    do {                                                                                                          \
+        if (::mvcl::test::updateGoldenRequested()) {                                                              \
+            std::filesystem::copy_file((rendered), (golden), std::filesystem::copy_options::overwrite_existing); \
+            GTEST_SKIP() << "wrote " << (golden);                                                                 \
+        }                                                                                                         \
+        ASSERT_TRUE(std::filesystem::exists(golden)) << (golden) << " is missing; run with MVCL_UPDATE_GOLDEN=1"; \
+        const ::mvcl::test::ImageDifference goldenDiff =                                                          \
+            ::mvcl::test::compareImages(::mvcl::readImage(rendered), ::mvcl::readImage(golden), 8);             \
+        EXPECT_LT(goldenDiff.differingFraction, 0.002) << "max channel delta " << goldenDiff.maxChannelDelta;    \
+    } while (false)

@@ -52,13 +52,7 @@ TEST_P(LensGoldenImages, RendersAsTheGoldenImage) {
     ASSERT_TRUE(fs::exists(out)) << r.output;
     // Each lens of the stack must have pixels under it: a lens that misses the view tests nothing.
     EXPECT_EQ(r.output.find(": 0 px"), std::string::npos) << r.output;
-    if (updateGoldenRequested()) {
-        fs::copy_file(out, golden, fs::copy_options::overwrite_existing);
-        GTEST_SKIP() << "wrote " << golden;
-    }
-    ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run with MVCL_UPDATE_GOLDEN=1";
-    const ImageDifference diff = compareImages(readImage(out), readImage(golden), 8);
-    EXPECT_LT(diff.differingFraction, 0.002) << "max channel delta " << diff.maxChannelDelta;
+    MVCL_EXPECT_MATCHES_GOLDEN(out, golden);
 }
 
 INSTANTIATE_TEST_SUITE_P(Demos, LensGoldenImages, testing::ValuesIn(demoStacks()),

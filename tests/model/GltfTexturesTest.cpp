@@ -361,13 +361,7 @@ TEST(GltfTextures, MaterialFeaturesMatchTheGoldenImage) {
     const CommandResult r = runRender(quoted(file.string()) + " --size 300x160 --spp 4 --eye 0,2.5,7 --target 0,-0.4,0 --fov 40 -o " +
                                       quoted(out.string()));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    if (updateGoldenRequested()) {
-        fs::copy_file(out, golden, fs::copy_options::overwrite_existing);
-        GTEST_SKIP() << "wrote " << golden;
-    }
-    ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run with MVCL_UPDATE_GOLDEN=1";
-    const ImageDifference diff = compareImages(readImage(out), readImage(golden), 8);
-    EXPECT_LT(diff.differingFraction, 0.002) << "max channel delta " << diff.maxChannelDelta;
+    MVCL_EXPECT_MATCHES_GOLDEN(out, golden);
 }
 
 namespace {
