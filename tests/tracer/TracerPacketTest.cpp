@@ -163,6 +163,7 @@ struct Counts {
     int hits = 0;
     int ties = 0;     ///< hits whose winner has an exact equal-t twin (the duplicated mesh)
     int occluded = 0;
+    int occludedWithin = 0; ///< occluded within the per-ray ranges
 };
 
 /// Every packet through closestHits and anyHits against closestHit and anyHit ray by ray.
@@ -174,12 +175,25 @@ void expectSameAsSingleRays(const Tracer &packets, const Tracer &single, const s
         std::array<Hit, Tracer::kPacketSize> hits{};
         const uint32_t found = packets.closestHits(p, query, hits);
         const uint32_t occluded = packets.anyHits(p, query);
+        // Per-ray ranges (shadow rays toward a point light): each ray ends just before, exactly
+        // at or just past its own closest hit, or at a fixed distance where it has none.
+        std::array<float, Tracer::kPacketSize> tMax{};
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            Hit h;
+            const float t = single.closestHit(p[i], query, h) ? h.t : 1.f;
+            tMax[i] = i % 3 == 0 ? std::nextafter(t, 0.f) : i % 3 == 1 ? t : 2.f * t;
+        }
+        const uint32_t occludedWithin = packets.anyHits(p, query, {tMax.data(), p.size()});
         for (std::size_t i = 0; i < p.size(); ++i) {
             Hit h;
             const bool expected = single.closestHit(p[i], query, h);
             ASSERT_EQ(bool((found >> i) & 1u), expected) << "packet " << k << " ray " << i;
             ASSERT_EQ(bool((occluded >> i) & 1u), single.anyHit(p[i], query)) << "packet " << k << " ray " << i;
+            RayQuery within = query;
+            within.tMax = std::min(query.tMax, tMax[i]);
+            ASSERT_EQ(bool((occludedWithin >> i) & 1u), single.anyHit(p[i], within)) << "packet " << k << " ray " << i;
             counts.occluded += (occluded >> i) & 1u;
+            counts.occludedWithin += (occludedWithin >> i) & 1u;
             if (!expected) continue;
             ++counts.hits;
             const Hit &g = hits[i];
@@ -223,6 +237,9 @@ TEST_P(TracerPackets, PacketsMatchSingleRays) {
                 EXPECT_GT(coherentCounts.ties, 0);
                 EXPECT_GT(incoherentCounts.hits, 50);
                 EXPECT_GT(incoherentCounts.occluded, 50);
+                // Some rays end before their hit: the per-ray ranges must remove occlusions.
+                EXPECT_GT(coherentCounts.occludedWithin, 0);
+                EXPECT_LT(coherentCounts.occludedWithin, coherentCounts.occluded);
             }
         }
     }
@@ -237,6 +254,8 @@ TEST(TracerPacketsTest, RejectsOversizedPackets) {
     std::vector<Hit> hits(rays.size());
     EXPECT_THROW(tracer.closestHits(rays, RayQuery{}, hits), Error);
     EXPECT_THROW(tracer.anyHits(rays, RayQuery{}), Error);
+    const std::vector<float> ranges(3, 1.f);
+    EXPECT_THROW(tracer.anyHits(std::span<const Ray>(rays.data(), 4), RayQuery{}, ranges), Error);
     std::vector<Hit> tooFew(3);
     EXPECT_THROW(tracer.closestHits(std::span<const Ray>(rays.data(), 4), RayQuery{}, tooFew), Error);
     EXPECT_EQ(tracer.closestHits({}, RayQuery{}, {}), 0u);

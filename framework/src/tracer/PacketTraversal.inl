@@ -432,7 +432,12 @@ unsigned tracePacket(const detail::WideBvh &wide, unsigned lanes, PacketSetup &s
     k.ix = div(one, Lanes::load(p.dx)), k.iy = div(one, Lanes::load(p.dy)), k.iz = div(one, Lanes::load(p.dz));
     k.fx = mul(k.ix, farScale), k.fy = mul(k.iy, farScale), k.fz = mul(k.iz, farScale);
     k.tLow = Lanes::all(q.tMin > 0.f ? q.tMin * detail::kTraversalSlackDown : 0.f);
-    const float tHigh = q.tMax * detail::kTraversalSlackUp;
+    // Each ray's bounds, as its single-ray query would start them (s.tMax: the query's, or the
+    // ray's own range of a per-ray anyHits()).
+    for (int i = 0; i < kPacketLanes; ++i) {
+        p.tCap[i] = s.tMax[i];
+        p.tHigh[i] = s.tMax[i] * detail::kTraversalSlackUp;
+    }
     // IEEE division keeps the sign of zero, so the sign of 1/d picks the slabs as in RayContext.
     const unsigned negative[3] = {signBits(k.ix), signBits(k.iy), signBits(k.iz)};
     const float *root = wide.rootBounds;
@@ -444,14 +449,10 @@ unsigned tracePacket(const detail::WideBvh &wide, unsigned lanes, PacketSetup &s
     Lanes tn = max(mul(sub(slab(0, true), k.ox), k.ix), k.tLow);
     tn = max(mul(sub(slab(1, true), k.oy), k.iy), tn);
     tn = max(mul(sub(slab(2, true), k.oz), k.iz), tn);
-    Lanes tf = min(mul(sub(slab(0, false), k.ox), k.fx), Lanes::all(tHigh));
+    Lanes tf = min(mul(sub(slab(0, false), k.ox), k.fx), Lanes::load(p.tHigh));
     tf = min(mul(sub(slab(1, false), k.oy), k.fy), tf);
     tf = min(mul(sub(slab(2, false), k.oz), k.fz), tf);
     const unsigned entering = lessEqual(tn, tf) & lanes;
-    for (int i = 0; i < kPacketLanes; ++i) {
-        p.tHigh[i] = tHigh;
-        p.tCap[i] = q.tMax;
-    }
     // The watertight constants of each dominant axis the entering rays have (usually one).
     Shear shears[3];
     unsigned shearLanes[3] = {};

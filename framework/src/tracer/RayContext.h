@@ -28,15 +28,16 @@ inline constexpr float kBoxFarScale = 1.f + 2.f * gamma(3);
 inline constexpr float kTraversalSlackUp = 1.f + 1.f / 65536.f;
 inline constexpr float kTraversalSlackDown = 1.f - 1.f / 65536.f;
 
-/// True if the ray and the query are usable: finite origin and direction, non-zero direction,
-/// tMin ≤ tMax, neither NaN.
-inline bool isValidQuery(const Ray &ray, const RayQuery &query) {
+/// True if the ray and the range [tMin, tMax] are usable: finite origin and direction, non-zero
+/// direction, tMin ≤ tMax, neither NaN.
+inline bool isValidQuery(const Ray &ray, float tMin, float tMax) {
     for (int k = 0; k < 3; ++k)
         if (!std::isfinite(ray.origin[k]) || !std::isfinite(ray.direction[k])) return false;
     if (ray.direction.x == 0.f && ray.direction.y == 0.f && ray.direction.z == 0.f) return false;
-    if (std::isnan(query.tMin) || std::isnan(query.tMax) || query.tMin > query.tMax) return false;
-    return query.tMax > 0.f;
+    if (std::isnan(tMin) || std::isnan(tMax) || tMin > tMax) return false;
+    return tMax > 0.f;
 }
+inline bool isValidQuery(const Ray &ray, const RayQuery &query) { return isValidQuery(ray, query.tMin, query.tMax); }
 
 struct RayContext {
     Ray ray;

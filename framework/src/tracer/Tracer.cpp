@@ -252,6 +252,9 @@ union Slot {
 struct PacketSetup {
     const Ray *rays = nullptr;
     const RayQuery *query = nullptr;
+    /// Each ray's upper bound: the query's, or min(query.tMax, tMax[i]) for anyHits() with
+    /// per-ray ranges (the expression a single query with that tMax would hold).
+    float tMax[detail::kPacketLanes];
     unsigned valid = 0; ///< rays with a valid query
     unsigned built = 0; ///< rays whose context exists
     unsigned dominantAxisLanes[3] = {}; ///< rays by WatertightRay::kz (the largest |direction| axis)
@@ -263,10 +266,14 @@ struct PacketSetup {
     const detail::WatertightRay4 *wray4[detail::kPacketLanes];
     const WatertightRay *wrays[detail::kPacketLanes];
 
-    PacketSetup(std::span<const Ray> r, const RayQuery &q) : rays(r.data()), query(&q) {
+    /// `rayTMax`: null, or each ray's own upper bound (see tMax).
+    PacketSetup(std::span<const Ray> r, const RayQuery &q, const float *rayTMax = nullptr)
+        : rays(r.data()), query(&q) {
         for (int i = 0; i < detail::kPacketLanes; ++i) {
+            const bool inPacket = std::size_t(i) < r.size();
+            tMax[i] = inPacket && rayTMax ? std::min(q.tMax, rayTMax[i]) : q.tMax;
             // Lanes without a valid ray get harmless constants; no walk ever reads them.
-            const bool ok = std::size_t(i) < r.size() && detail::isValidQuery(r[std::size_t(i)], q);
+            const bool ok = inPacket && detail::isValidQuery(r[std::size_t(i)], q.tMin, tMax[i]);
             valid |= unsigned(ok) << i;
             const Ray &ray = ok ? r[std::size_t(i)] : Ray{glm::vec3(0.f), glm::vec3(1.f)};
             p.ox[i] = ray.origin.x, p.oy[i] = ray.origin.y, p.oz[i] = ray.origin.z;
@@ -283,6 +290,7 @@ struct PacketSetup {
     const RayContext &context(int i) {
         if (!((built >> i) & 1u)) {
             new (&contexts[i].value) RayContext(rays[i], *query);
+            contexts[i].value.tMax = tMax[i];
             wrays[i] = new (&wrayStorage[i].value) WatertightRay(rays[i]);
             wray4[i] = new (&wray4s[i].value) detail::WatertightRay4(*wrays[i]);
             built |= 1u << i;
@@ -407,6 +415,9 @@ struct Tracer::Private {
     detail::LayerPriorityHit layerPriority(const Ray &ray) const {
         return detail::LayerPriorityHit(contactDistance > 0.f ? contactDistance / lengthUnfused(ray.direction) : 0.f);
     }
+    /// Tracer::anyHits() with, if `tMax` is not null, each ray's own upper bound.
+    uint32_t anyHitsInPacket(const Tracer &tracer, std::span<const Ray> rays, const RayQuery &query,
+                             const float *tMax) const;
     template <class Best>
     bool closestHit(const RayContext &c, Best &best, Hit &hit) const {
         bool found = traverse<false>(c, best);
@@ -681,21 +692,37 @@ uint32_t Tracer::closestHits(std::span<const Ray> rays, const RayQuery &query, s
 
 uint32_t Tracer::anyHits(std::span<const Ray> rays, const RayQuery &query) const {
     checkPacketSize(rays.size(), rays.size());
-    if (!d->packetsPay() || (d->contactDistance > 0.f && d->isLayered(query))) {
+    return d->anyHitsInPacket(*this, rays, query, nullptr);
+}
+
+uint32_t Tracer::anyHits(std::span<const Ray> rays, const RayQuery &query, std::span<const float> tMax) const {
+    checkPacketSize(rays.size(), rays.size());
+    if (tMax.size() < rays.size())
+        throw Error("tracer", "a packet query of " + std::to_string(rays.size()) + " rays needs as many ranges, not " +
+                                  std::to_string(tMax.size()));
+    return d->anyHitsInPacket(*this, rays, query, tMax.data());
+}
+
+uint32_t Tracer::Private::anyHitsInPacket(const Tracer &tracer, std::span<const Ray> rays, const RayQuery &query,
+                                          const float *tMax) const {
+    if (!packetsPay() || (contactDistance > 0.f && isLayered(query))) {
         uint32_t result = 0;
-        for (std::size_t i = 0; i < rays.size(); ++i)
-            if (anyHit(rays[i], query)) result |= 1u << i;
+        RayQuery own = query;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            if (tMax) own.tMax = std::min(query.tMax, tMax[i]);
+            if (tracer.anyHit(rays[i], own)) result |= 1u << i;
+        }
         return result;
     }
-    PacketSetup s(rays, query);
+    PacketSetup s(rays, query, tMax);
     UnusedBests unused;
     uint32_t result = 0;
-    if (!d->planes.empty())
+    if (!planes.empty())
         for (unsigned rest = s.valid; rest; rest &= rest - 1) {
             const int i = std::countr_zero(rest);
-            if (d->testPlanes<true>(s.context(i), unused.unused)) result |= 1u << i;
+            if (testPlanes<true>(s.context(i), unused.unused)) result |= 1u << i;
         }
-    return result | d->tracePacket<true>(s.valid & ~result, s, unused);
+    return result | tracePacket<true>(s.valid & ~result, s, unused);
 }
 
 const char *Tracer::singleRayIsa() const { return d->useAvx2 ? "avx2" : "sse2"; }

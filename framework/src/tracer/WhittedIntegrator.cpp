@@ -4,6 +4,7 @@
 #include "MaterialEvaluator.h"
 #include "SurfaceOverlays.h"
 
+#include <mvcl/core/Error.h>
 #include <mvcl/core/FloatBits.h>
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/RayOffset.h>
@@ -13,10 +14,12 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <optional>
+#include <string>
 
 namespace mvcl {
 
@@ -170,10 +173,9 @@ IntegratorPlan WhittedIntegrator::plan(const RayPolicy &policy, StageSelection s
 }
 
 float WhittedIntegrator::lightPassing(const Ray &shadowRay, float lightDistance, const RayQuery &shadowQuery,
-                                      ShadowStage stage, RayCounters &counters) const {
+                                      ShadowStage stage) const {
     RayQuery query = shadowQuery;
     query.tMax = std::min(query.tMax, lightDistance);
-    countRay(RayType::Shadow, counters);
     // Opaque occluders need only "is anything in the way" (any-hit, the cheap query).
     if (stage != ShadowStage::TransparentWalk) return m_tracer.anyHit(shadowRay, query) ? 0.f : 1.f;
 
@@ -303,22 +305,155 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
     return traceFromHit(ray, type, depth, found ? &hit : nullptr, policy, plan, counters, travelled);
 }
 
+/// What traceFromHit() knows of the surface point a ray shows before its light loop: the hit (or
+/// the cap in front of it), the lit side's normals, the material's terms, and what lies behind a
+/// translucent primary hit. Made by prepareShading(), lit by shadeLit().
+struct WhittedIntegrator::ShadingPoint {
+    Ray ray;
+    RayType type = RayType::Primary;
+    int depth = 0;
+    float travelled = 0.f;
+    Hit hit;
+    std::optional<detail::ClipCap> cap;
+    SurfaceInteraction si;
+    detail::ShadedSurface surface;
+    glm::vec3 d{0.f};      ///< unit direction of the ray
+    float rayLength = 0.f; ///< |ray.direction|
+    float coneWidth = 0.f; ///< the ray cone's width at the surface
+    float shownT = 0.f;    ///< t of the point shown (the cap's, or the hit's)
+    bool entering = true;  ///< the ray meets the surface from the side its normal faces
+    glm::vec3 ng{0.f}, ns{0.f}; ///< geometric and shading normals on the lit side
+    float alpha = 1.f;          ///< opacity stage: the surface's share, blended over `behind`
+    glm::vec3 behind{0.f};
+};
+
+namespace {
+
+/// How a light reaches a surface point: unit direction toward it, distance (∞ for directional
+/// lights), attenuation and the cosine at the shading normal.
+struct LightPath {
+    glm::vec3 toLight{0.f};
+    float distance = 0.f;
+    float attenuation = 1.f;
+    float nDotL = 0.f;
+};
+
+/// The path from the point at `position` (lit side normals ng, ns) to `light`; false where the
+/// light adds nothing (behind the surface, on it, or attenuated away).
+bool lightPath(const glm::vec3 &position, const glm::vec3 &ng, const glm::vec3 &ns, const Light &light,
+               LightPath &path) {
+    if (light.type == LightType::Directional) {
+        path.toLight = -light.direction;
+        path.distance = std::numeric_limits<float>::infinity();
+        path.attenuation = 1.f;
+    } else {
+        path.toLight = light.position - position;
+        path.distance = glm::length(path.toLight);
+        if (!(path.distance > 0.f)) return false; // light exactly on the surface
+        path.toLight /= path.distance;
+        path.attenuation = light.constantAttenuation + light.linearAttenuation * path.distance +
+                           light.quadraticAttenuation * path.distance * path.distance;
+        if (!(path.attenuation > 0.f)) return false;
+    }
+    path.nDotL = glm::dot(ns, path.toLight);
+    return path.nDotL > 0.f && glm::dot(ng, path.toLight) > 0.f;
+}
+
+Ray shadowRayOf(const SurfaceInteraction &si, const glm::vec3 &ng, const glm::vec3 &toLight) {
+    return Ray{offsetRayOrigin(si.position, si.positionError, ng, toLight), toLight};
+}
+
+/// Lights whose shadow rays radianceFromHits() traces as packets; any further light of a scene
+/// is traced ray by ray (scenes rarely have more).
+constexpr std::size_t kPacketLights = 8;
+
+} // namespace
+
 glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int depth, const Hit *closest,
                                           const RayPolicy &policy, const IntegratorPlan &plan, RayCounters &counters,
                                           float travelled) const {
+    ShadingPoint p;
+    glm::vec3 finished;
+    if (!prepareShading(ray, type, depth, closest, policy, plan, counters, travelled, p, finished)) return finished;
+    return shadeLit(p, policy, plan, counters, nullptr);
+}
+
+void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::span<const Hit> primaryHits,
+                                         uint32_t hitMask, const RayPolicy &policy, const IntegratorPlan &plan,
+                                         RayCounters &counters, std::span<glm::vec3> radiance) const {
+    const std::size_t count = primaryRays.size();
+    if (count > std::size_t(Tracer::kPacketSize) || primaryHits.size() < count || radiance.size() < count)
+        throw Error("integrator", "radianceFromHits takes at most " + std::to_string(Tracer::kPacketSize) +
+                                      " rays with as many hits and values, not " + std::to_string(count) + ", " +
+                                      std::to_string(primaryHits.size()) + " and " + std::to_string(radiance.size()));
+    std::array<ShadingPoint, Tracer::kPacketSize> points;
+    uint32_t lit = 0; // rays whose point goes on to the light loop
+    for (std::size_t i = 0; i < count; ++i) {
+        countRay(RayType::Primary, counters);
+        glm::vec3 finished;
+        if (prepareShading(primaryRays[i], RayType::Primary, 0, (hitMask >> i) & 1u ? &primaryHits[i] : nullptr, policy,
+                           plan, counters, 0.f, points[i], finished))
+            lit |= 1u << i;
+        else
+            radiance[i] = finishSample(finished, policy, plan, counters);
+    }
+    // Opaque occluders only (any-hit answers): the shadow rays of all points toward one light
+    // are one packet, coherent where the points are neighbours. A point on a cap has its own
+    // shadow query (the cut's clips added) and goes ray by ray, as do transparent walks.
+    uint32_t packeted = 0;
+    if (plan.shadows == ShadowStage::AnyHit)
+        for (uint32_t rest = lit; rest; rest &= rest - 1)
+            if (!points[size_t(std::countr_zero(rest))].cap) packeted |= rest & ~(rest - 1);
+    const std::vector<Light> &lights = m_tracer.scene().lights;
+    std::array<std::array<float, kPacketLights>, Tracer::kPacketSize> passed;
+    for (std::size_t l = 0; packeted && l < std::min(lights.size(), kPacketLights); ++l) {
+        std::array<Ray, Tracer::kPacketSize> rays;
+        std::array<float, Tracer::kPacketSize> distances;
+        std::array<int, Tracer::kPacketSize> pointOf;
+        std::size_t n = 0;
+        for (uint32_t rest = packeted; rest; rest &= rest - 1) {
+            const int i = std::countr_zero(rest);
+            const ShadingPoint &p = points[size_t(i)];
+            LightPath path;
+            if (!lightPath(p.si.position, p.ng, p.ns, lights[l], path)) continue;
+            rays[n] = shadowRayOf(p.si, p.ng, path.toLight);
+            distances[n] = path.distance;
+            pointOf[n++] = i;
+        }
+        if (n == 0) continue;
+        const uint32_t occluded =
+            m_tracer.anyHits({rays.data(), n}, policy.query(RayType::Shadow), {distances.data(), n});
+        for (std::size_t j = 0; j < n; ++j) passed[size_t(pointOf[j])][l] = (occluded >> j) & 1u ? 0.f : 1.f;
+    }
+    for (uint32_t rest = lit; rest; rest &= rest - 1) {
+        const std::size_t i = size_t(std::countr_zero(rest));
+        radiance[i] = finishSample(shadeLit(points[i], policy, plan, counters,
+                                            (packeted >> i) & 1u ? passed[i].data() : nullptr),
+                                   policy, plan, counters);
+    }
+}
+
+bool WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const Hit *closest,
+                                       const RayPolicy &policy, const IntegratorPlan &plan, RayCounters &counters,
+                                       float travelled, ShadingPoint &p, glm::vec3 &finished) const {
     const Scene &scene = m_tracer.scene();
     const ShadingPolicy &shading = policy.shading;
     const RayQuery &query = policy.query(type);
     const bool isPrimary = type == RayType::Primary;
-    const glm::vec3 d = glm::normalize(ray.direction);
-    const float rayLength = glm::length(ray.direction);
+    p.ray = ray;
+    p.type = type;
+    p.depth = depth;
+    p.travelled = travelled;
+    p.d = glm::normalize(ray.direction);
+    p.rayLength = glm::length(ray.direction);
     // Where a primary ray crosses a capped clip surface into a closed solid, it shows the cut
     // face there, as a solid face of that solid's material, in front of whatever lies inside.
-    std::optional<detail::ClipCap> cap;
-    Hit hit = closest ? *closest : Hit{};
+    std::optional<detail::ClipCap> &cap = p.cap;
+    Hit &hit = p.hit;
+    hit = closest ? *closest : Hit{};
     const bool found = closest && skipCutOutHits(ray, query, hit);
     if (!found) hit = Hit{};
-    SurfaceInteraction si;
+    SurfaceInteraction &si = p.si;
     if (isPrimary && detail::hasCappedClip(query)) {
         // The run of accepted points that holds the hit, or (no hit at all: a slab through a
         // solid) the first run, begins on a capped surface: is that point inside a solid?
@@ -334,14 +469,18 @@ glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int dept
     if (found || cap) si = m_tracer.interaction(ray, hit);
     if (!found && !cap) {
         // An outline is centred on the silhouette, so the background next to it gets half.
-        if (!isPrimary || shading.edges.mode != EdgeLineMode::Outlines) return scene.background;
-        return glm::mix(scene.background, shading.edges.color,
-                        outlineCoverage(ray, query, nullptr, shading.edges, counters));
+        if (!isPrimary || shading.edges.mode != EdgeLineMode::Outlines)
+            finished = scene.background;
+        else
+            finished = glm::mix(scene.background, shading.edges.color,
+                                outlineCoverage(ray, query, nullptr, shading.edges, counters));
+        return false;
     }
-    const float shownT = cap ? cap->t : hit.t;
+    p.shownT = cap ? cap->t : hit.t;
     // The ray cone's width where it meets the surface picks the texture level.
-    const float coneWidth = ray.coneWidth + ray.coneSpread * shownT * rayLength;
-    detail::ShadedSurface surface = m_materials->evaluate(hit, si, d, coneWidth);
+    p.coneWidth = ray.coneWidth + ray.coneSpread * p.shownT * p.rayLength;
+    p.surface = m_materials->evaluate(hit, si, p.d, p.coneWidth);
+    detail::ShadedSurface &surface = p.surface;
     if (cap) {
         si.position = ray.at(cap->t);
         // ray.at() rounds once per component; a few ulps of the largest term bound the error.
@@ -356,82 +495,90 @@ glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int dept
         section.ambient = glm::mix(section.ambient, glm::vec3(0.8f), clear);
         surface.transparency = 0.f;
     }
-    const PhongTerms &m = surface.phong;
 
     // Light the side the ray arrived on; remember whether it is entering the surface.
-    const bool entering = glm::dot(si.geometricNormal, d) < 0.f;
-    const glm::vec3 ng = entering ? si.geometricNormal : -si.geometricNormal;
-    glm::vec3 ns = entering ? surface.shadingNormal : -surface.shadingNormal;
-    if (glm::dot(ns, ng) < 0.f) ns = ng;
+    const glm::vec3 &d = p.d;
+    p.entering = glm::dot(si.geometricNormal, d) < 0.f;
+    p.ng = p.entering ? si.geometricNormal : -si.geometricNormal;
+    p.ns = p.entering ? surface.shadingNormal : -surface.shadingNormal;
+    if (glm::dot(p.ns, p.ng) < 0.f) p.ns = p.ng;
 
     // Opacity stage: a partly opaque primary hit is blended with what the ray meets when it goes
     // on through the surface (the same constraints, t still counted from the camera).
     // A primary ray's depth counts the surfaces it went through: depth peeling passes the first
     // peelSurfaces ones at opacity 0. A cap is solid: nothing shows through it.
-    float alpha = 1.f;
-    glm::vec3 behind(0.f);
+    p.alpha = 1.f;
+    p.behind = glm::vec3(0.f);
     const bool peeled = isPrimary && !cap && depth < std::min(shading.peelSurfaces, kDepthCeiling);
     if (peeled ||
         (isPrimary && !cap && (plan.translucentLayers & layerBit(hit.layer)) != 0 && depth < kDepthCeiling)) {
         const float facing = std::min(std::abs(glm::dot(surface.shadingNormal, d)), 1.f);
         const float opacity = std::clamp(shading.layerOpacity[hit.layer], 0.f, 1.f);
-        alpha = peeled ? 0.f : opacity + (1.f - opacity) * std::clamp(shading.edgeOpacity, 0.f, 1.f) * (1.f - facing);
+        p.alpha = peeled ? 0.f : opacity + (1.f - opacity) * std::clamp(shading.edgeOpacity, 0.f, 1.f) * (1.f - facing);
         RayPolicy onwardPolicy = policy;
         RayQuery &onwardQuery = onwardPolicy.query(RayType::Primary);
         onwardQuery.tMin = std::max(0.f, onwardQuery.tMin - hit.t);
         onwardQuery.tMax = onwardQuery.tMax - hit.t;
-        Ray onward{offsetRayOrigin(si.position, si.positionError, ng, d), d};
-        onward.coneWidth = coneWidth;
+        Ray onward{offsetRayOrigin(si.position, si.positionError, p.ng, d), d};
+        onward.coneWidth = p.coneWidth;
         onward.coneSpread = ray.coneSpread;
         // depth + 1 bounds the walk through stacked surfaces (the ceiling); it is no bounce.
-        behind = trace(onward, RayType::Primary, depth + 1, onwardPolicy, plan, counters,
-                       travelled + hit.t * rayLength);
-        if (alpha <= 0.f) return behind;
-    }
-    // Lines go over the surface's colour, which then blends with what lies behind it.
-    const auto shown = [&](const glm::vec3 &surfaceColor) {
-        glm::vec3 front = surfaceColor;
-        // A cap is no surface of the mesh its hit lies on: it gets no lines of its own.
-        if (isPrimary && !cap && shading.edges.mode != EdgeLineMode::Off) {
-            float lines = 0.f;
-            if (shading.edges.mode == EdgeLineMode::Outlines)
-                lines = outlineCoverage(ray, query, &hit, shading.edges, counters);
-            else if (hit.kind == GeometryKind::Triangle)
-                lines = detail::triangleEdgeCoverage(scene.meshes[hit.geometry], hit, coneWidth,
-                                                     shading.edges.widthPixels);
-            front = glm::mix(front, shading.edges.color, lines);
+        p.behind = trace(onward, RayType::Primary, depth + 1, onwardPolicy, plan, counters,
+                         travelled + hit.t * p.rayLength);
+        if (p.alpha <= 0.f) {
+            finished = p.behind;
+            return false;
         }
-        return alpha < 1.f ? alpha * front + (1.f - alpha) * behind : front;
-    };
-    if (isPrimary && shading.falseColor.mode != FalseColorMode::Off)
-        return shown(detail::falseColorAt(shading.falseColor, hit, ns, travelled + shownT * rayLength,
-                                          std::min(std::abs(glm::dot(ns, d)), 1.f)));
+    }
+    if (isPrimary && shading.falseColor.mode != FalseColorMode::Off) {
+        finished = shown(p, detail::falseColorAt(shading.falseColor, hit, p.ns, travelled + p.shownT * p.rayLength,
+                                                 std::min(std::abs(glm::dot(p.ns, d)), 1.f)),
+                         policy, counters);
+        return false;
+    }
+    return true;
+}
+
+glm::vec3 WhittedIntegrator::shown(const ShadingPoint &p, const glm::vec3 &surfaceColor, const RayPolicy &policy,
+                                   RayCounters &counters) const {
+    // Lines go over the surface's colour, which then blends with what lies behind it.
+    const EdgePolicy &edges = policy.shading.edges;
+    glm::vec3 front = surfaceColor;
+    // A cap is no surface of the mesh its hit lies on: it gets no lines of its own.
+    if (p.type == RayType::Primary && !p.cap && edges.mode != EdgeLineMode::Off) {
+        float lines = 0.f;
+        if (edges.mode == EdgeLineMode::Outlines)
+            lines = outlineCoverage(p.ray, policy.query(p.type), &p.hit, edges, counters);
+        else if (p.hit.kind == GeometryKind::Triangle)
+            lines = detail::triangleEdgeCoverage(m_tracer.scene().meshes[p.hit.geometry], p.hit, p.coneWidth,
+                                                 edges.widthPixels);
+        front = glm::mix(front, edges.color, lines);
+    }
+    return p.alpha < 1.f ? p.alpha * front + (1.f - p.alpha) * p.behind : front;
+}
+
+glm::vec3 WhittedIntegrator::shadeLit(const ShadingPoint &p, const RayPolicy &policy, const IntegratorPlan &plan,
+                                      RayCounters &counters, const float *shadowAnswers) const {
+    const Scene &scene = m_tracer.scene();
+    const ShadingPolicy &shading = policy.shading;
+    const PhongTerms &m = p.surface.phong;
+    const glm::vec3 &d = p.d, &ng = p.ng, &ns = p.ns;
+    const SurfaceInteraction &si = p.si;
 
     // A cap is lit as if the cut were real: its shadow rays skip what the primary clips remove.
-    RayQuery shadowQuery = policy.query(RayType::Shadow);
-    if (cap)
-        for (const ClipVolume &clip : query.clips()) shadowQuery.tryAddClip(clip);
+    std::optional<RayQuery> cappedShadowQuery;
+    if (p.cap) {
+        cappedShadowQuery = policy.query(RayType::Shadow);
+        for (const ClipVolume &clip : policy.query(p.type).clips()) cappedShadowQuery->tryAddClip(clip);
+    }
+    const RayQuery &shadowQuery = cappedShadowQuery ? *cappedShadowQuery : policy.query(RayType::Shadow);
 
     // Eq. 1: A + Σ I·(P·(L·N) + Ks·S·(N·H)^Ps) / D
     glm::vec3 local = m.ambient * scene.ambientLight;
-    for (const Light &light : scene.lights) {
-        glm::vec3 toLight;
-        float distance;
-        float attenuation = 1.f;
-        if (light.type == LightType::Directional) {
-            toLight = -light.direction;
-            distance = std::numeric_limits<float>::infinity();
-        } else {
-            toLight = light.position - si.position;
-            distance = glm::length(toLight);
-            if (!(distance > 0.f)) continue; // light exactly on the surface
-            toLight /= distance;
-            attenuation = light.constantAttenuation + light.linearAttenuation * distance +
-                          light.quadraticAttenuation * distance * distance;
-            if (!(attenuation > 0.f)) continue;
-        }
-        const float nDotL = glm::dot(ns, toLight);
-        if (nDotL <= 0.f || glm::dot(ng, toLight) <= 0.f) continue;
+    for (std::size_t l = 0; l < scene.lights.size(); ++l) {
+        const Light &light = scene.lights[l];
+        LightPath path;
+        if (!lightPath(si.position, ng, ns, light, path)) continue;
 
         glm::vec3 transmittance(1.f);
         if (plan.shadows != ShadowStage::Off) {
@@ -439,38 +586,43 @@ glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int dept
             if (plan.shadows == ShadowStage::Unoccluded) {
                 ++counters.skippedShadowRays;
             } else {
-                const Ray shadowRay{offsetRayOrigin(si.position, si.positionError, ng, toLight), toLight};
-                passed = lightPassing(shadowRay, distance, shadowQuery, plan.shadows, counters);
+                countRay(RayType::Shadow, counters);
+                passed = shadowAnswers && l < kPacketLights
+                             ? shadowAnswers[l]
+                             : lightPassing(shadowRayOf(si, ng, path.toLight), path.distance, shadowQuery, plan.shadows);
                 if (plan.shadows != plan.forcedShadows) ++counters.skippedTransparentWalks;
             }
             // The blocked share of the light is dimmed by the policy's strength and tint.
             const glm::vec3 blocked = glm::mix(glm::vec3(1.f), shading.shadowTint, shading.shadowStrength);
             transmittance = glm::vec3(passed) + (1.f - passed) * blocked;
         }
-        const glm::vec3 h = glm::normalize(toLight - d);
+        const glm::vec3 h = glm::normalize(path.toLight - d);
         const float nDotH = std::max(glm::dot(ns, h), 0.f);
         const float specular = m.specular > 0.f ? m.specular * std::pow(nDotH, m.shininess) : 0.f;
-        local += transmittance * light.intensity * (m.diffuse * nDotL + specular * m.specularColor) /
-                 attenuation;
+        local += transmittance * light.intensity * (m.diffuse * path.nDotL + specular * m.specularColor) /
+                 path.attenuation;
     }
 
     const int maxDepth = std::min(shading.maxDepth, kDepthCeiling);
     const float reflectivity = shading.reflections ? m.reflectivity : 0.f;
     float reflectWeight = reflectivity;
-    float refractWeight = shading.refractions ? surface.transparency : 0.f;
-    glm::vec3 color = local * (1.f - std::clamp(surface.transparency, 0.f, 1.f)) + surface.emission;
-    if (cap) return shown(cap->style == ClipVolume::CapStyle::Hatched ? detail::hatched(color, si.position, m_hatchPeriod)
-                                                                       : color);
-    if ((plan.secondaryRayTypes & rayTypeBit(type)) == 0) {
+    float refractWeight = shading.refractions ? p.surface.transparency : 0.f;
+    glm::vec3 color = local * (1.f - std::clamp(p.surface.transparency, 0.f, 1.f)) + p.surface.emission;
+    if (p.cap)
+        return shown(p, p.cap->style == ClipVolume::CapStyle::Hatched ? detail::hatched(color, si.position, m_hatchPeriod)
+                                                                       : color,
+                     policy, counters);
+    if ((plan.secondaryRayTypes & rayTypeBit(p.type)) == 0) {
         ++counters.skippedSecondaryChecks;
-        return shown(color);
+        return shown(p, color, policy, counters);
     }
-    if (depth >= maxDepth || (reflectWeight <= 0.f && refractWeight <= 0.f)) return shown(color);
+    if (p.depth >= maxDepth || (reflectWeight <= 0.f && refractWeight <= 0.f)) return shown(p, color, policy, counters);
 
     const float cosI = -glm::dot(ns, d);
     glm::vec3 refracted(0.f);
     if (refractWeight > 0.f) {
-        const float eta = entering ? 1.f / surface.ior : surface.ior; // n_from / n_to
+        const float ior = p.surface.ior;
+        const float eta = p.entering ? 1.f / ior : ior; // n_from / n_to
         const float k = 1.f - eta * eta * (1.f - cosI * cosI);
         if (k < 0.f) {
             // Total internal reflection: everything the surface would transmit is reflected.
@@ -478,27 +630,27 @@ glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int dept
             refractWeight = 0.f;
         } else {
             const float cosT = std::sqrt(k);
-            const float fresnel = schlickFresnel(entering ? cosI : cosT, surface.ior);
+            const float fresnel = schlickFresnel(p.entering ? cosI : cosT, ior);
             reflectWeight += refractWeight * fresnel;
             refractWeight *= 1.f - fresnel;
             const glm::vec3 t = glm::normalize(eta * d + (eta * cosI - cosT) * ns);
             Ray refractRay{offsetRayOrigin(si.position, si.positionError, ng, t), t};
-            refractRay.coneWidth = coneWidth;
-            refractRay.coneSpread = ray.coneSpread;
-            refracted = trace(refractRay, RayType::Refraction, depth + 1, policy, plan, counters);
+            refractRay.coneWidth = p.coneWidth;
+            refractRay.coneSpread = p.ray.coneSpread;
+            refracted = trace(refractRay, RayType::Refraction, p.depth + 1, policy, plan, counters);
         }
     }
     if (reflectWeight > 0.f) {
         const glm::vec3 r = d - 2.f * glm::dot(ns, d) * ns;
         Ray reflectRay{offsetRayOrigin(si.position, si.positionError, ng, r), r};
-        reflectRay.coneWidth = coneWidth;
-        reflectRay.coneSpread = ray.coneSpread;
+        reflectRay.coneWidth = p.coneWidth;
+        reflectRay.coneSpread = p.ray.coneSpread;
         // Metals tint what they mirror; the Fresnel share of a transmissive surface stays white.
         const glm::vec3 tint = glm::mix(glm::vec3(1.f), m.specularColor,
                                         reflectWeight > 0.f ? std::clamp(reflectivity / reflectWeight, 0.f, 1.f) : 0.f);
-        color += reflectWeight * tint * trace(reflectRay, RayType::Reflection, depth + 1, policy, plan, counters);
+        color += reflectWeight * tint * trace(reflectRay, RayType::Reflection, p.depth + 1, policy, plan, counters);
     }
-    return shown(color + refractWeight * refracted);
+    return shown(p, color + refractWeight * refracted, policy, counters);
 }
 
 } // namespace mvcl

@@ -156,6 +156,7 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
     std::array<Ray, Tracer::kPacketSize> rays;
     std::array<Hit, Tracer::kPacketSize> hits;
     std::array<int, Tracer::kPacketSize> pixelOf;
+    std::array<glm::vec3, Tracer::kPacketSize> values;
     // Sample by sample: each pixel's sums still add its samples in order k = count, count + 1, …
     for (uint32_t k = first; k < last; ++k) {
         int lanes = 0;
@@ -168,9 +169,10 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
             pixelOf[size_t(lanes++)] = i;
         }
         const uint32_t found = tracer.closestHits({rays.data(), size_t(lanes)}, query, {hits.data(), size_t(lanes)});
+        m_integrator.radianceFromHits({rays.data(), size_t(lanes)}, {hits.data(), size_t(lanes)}, found, policy.ray,
+                                      plan, m_rays, {values.data(), size_t(lanes)});
         for (int j = 0; j < lanes; ++j) {
-            const glm::vec3 value = m_integrator.radianceFromHit(rays[size_t(j)], (found >> j) & 1u ? &hits[size_t(j)] : nullptr,
-                                                                 policy.ray, plan, m_rays);
+            const glm::vec3 &value = values[size_t(j)];
             PixelSamples &s = samples[pixelOf[size_t(j)]];
             s.sum += value;
             if ((k & 1u) == 0) s.evenSum += value;

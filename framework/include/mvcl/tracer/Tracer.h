@@ -63,6 +63,10 @@ public:
     /// anyHit() of each ray under one shared query, as a packet (shadow rays of a tile toward one
     /// light). Returns the bit mask of the occluded rays; same answers as anyHit() ray by ray.
     uint32_t anyHits(std::span<const Ray> rays, const RayQuery &query) const;
+    /// anyHits() where ray i's range ends at min(query.tMax, tMax[i]): shadow rays toward a point
+    /// light, each as long as its distance to the light. Same answers as anyHit() ray by ray under
+    /// the query with that tMax. Also throws when tMax.size() < rays.size().
+    uint32_t anyHits(std::span<const Ray> rays, const RayQuery &query, std::span<const float> tMax) const;
 
     /// The instruction set traversal uses on this CPU, for benches and logs: "avx2" or "sse2"
     /// for single rays; "avx512", "avx2" or "single rays" (no packet code for this CPU) for packets.

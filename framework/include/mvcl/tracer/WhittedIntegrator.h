@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace mvcl {
@@ -58,7 +59,19 @@ public:
     glm::vec3 radianceFromHit(const Ray &primaryRay, const Hit *primaryHit, const RayPolicy &policy,
                               const IntegratorPlan &plan, RayCounters &counters) const;
 
+    /// radianceFromHit() of up to Tracer::kPacketSize primary rays under one policy at once
+    /// (primaryHits[i] is ray i's hit where bit i of hitMask is set): the shadow rays of all their
+    /// hits toward each light are traced as one packet (Tracer::anyHits with per-ray ranges)
+    /// where occluders are opaque. radiance[i] is the value of radianceFromHit() for ray i, bit
+    /// for bit, and the same rays are counted. Throws mvcl::Error("integrator", ...) for more than
+    /// Tracer::kPacketSize rays or fewer hits or values than rays.
+    void radianceFromHits(std::span<const Ray> primaryRays, std::span<const Hit> primaryHits, uint32_t hitMask,
+                          const RayPolicy &policy, const IntegratorPlan &plan, RayCounters &counters,
+                          std::span<glm::vec3> radiance) const;
+
 private:
+    struct ShadingPoint;
+
     /// The colour stage and the non-finite check every sample ends with.
     glm::vec3 finishSample(glm::vec3 c, const RayPolicy &policy, const IntegratorPlan &plan,
                            RayCounters &counters) const;
@@ -70,6 +83,19 @@ private:
     /// already counted.
     glm::vec3 traceFromHit(const Ray &ray, RayType type, int depth, const Hit *closest, const RayPolicy &policy,
                            const IntegratorPlan &plan, RayCounters &counters, float travelled = 0.f) const;
+    /// traceFromHit() up to its light loop: fills `point` and returns true, or returns false with
+    /// the final colour in `finished` (a miss, a surface fully peeled, a false colour).
+    bool prepareShading(const Ray &ray, RayType type, int depth, const Hit *closest, const RayPolicy &policy,
+                        const IntegratorPlan &plan, RayCounters &counters, float travelled, ShadingPoint &point,
+                        glm::vec3 &finished) const;
+    /// The rest of traceFromHit(): lights, shadows, reflection and refraction. `shadowAnswers`,
+    /// if not null, holds what lightPassing() would answer for each of the first lights whose
+    /// shadow ray the point casts (radianceFromHits traced them as packets).
+    glm::vec3 shadeLit(const ShadingPoint &point, const RayPolicy &policy, const IntegratorPlan &plan,
+                       RayCounters &counters, const float *shadowAnswers) const;
+    /// A surface colour as the point shows it: edge lines over it, blended over what lies behind.
+    glm::vec3 shown(const ShadingPoint &point, const glm::vec3 &surfaceColor, const RayPolicy &policy,
+                    RayCounters &counters) const;
 
     /// Share (0 or 1) of an outline drawn at the primary ray `ray`: probe rays `edges.widthPixels`
     /// apart around it (WhittedIntegratorOutlines.cpp) find a silhouette, a boundary between two
@@ -89,7 +115,7 @@ private:
 
     /// Share of a light's intensity (0..1) that reaches the shadow ray's origin.
     float lightPassing(const Ray &shadowRay, float lightDistance, const RayQuery &shadowQuery,
-                       ShadowStage stage, RayCounters &counters) const;
+                       ShadowStage stage) const;
 
     const Tracer &m_tracer;
     /// Textures and alpha of materials at a hit (MaterialEvaluator.cpp).
