@@ -23,7 +23,9 @@ using test::quoted;
 using test::runRender;
 
 /// Two touching spheres of radius 1 with different tessellations (outer 24 × 48 on layer 0,
-/// inner 32 × 64 on layer 1), 10⁷ from the origin, as a .gltf file in the scratch folder.
+/// inner 32 × 64 on layer 1), 10⁷ from the origin, as a .gltf file in the scratch folder, named
+/// after the running test: ctest runs the tests of this file in parallel processes, and one
+/// rewriting a shared file while another renders it failed now and then.
 std::string touchingSpheresFile() {
     GltfWriter w;
     std::vector<int> nodes;
@@ -42,7 +44,8 @@ std::string touchingSpheresFile() {
         ++layer;
     }
     w.scene(nodes);
-    const fs::path path = outDir() / "touching-spheres.gltf";
+    const fs::path path =
+        outDir() / ("touching-spheres-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + ".gltf");
     std::ofstream(path) << w.text();
     return path.string();
 }

@@ -192,6 +192,7 @@ void expectSameAsSingleRays(const Tracer &packets, const Tracer &single, const s
             RayQuery within = query;
             within.tMax = std::min(query.tMax, tMax[i]);
             ASSERT_EQ(bool((occludedWithin >> i) & 1u), single.anyHit(p[i], within)) << "packet " << k << " ray " << i;
+            ASSERT_EQ(single.anyHit(p[i], query, tMax[i]), single.anyHit(p[i], within)) << "packet " << k << " ray " << i;
             counts.occluded += (occluded >> i) & 1u;
             counts.occludedWithin += (occludedWithin >> i) & 1u;
             if (!expected) continue;

@@ -629,6 +629,20 @@ bool Tracer::closestHit(const Ray &ray, const RayQuery &query, Hit &hit) const {
     return d->closestHitWithContact(*this, ray, query, hit, Private::Oracle::Traversal);
 }
 
+bool Tracer::anyHit(const Ray &ray, const RayQuery &query, float tMax) const {
+    const float end = std::min(query.tMax, tMax);
+    if (!(d->contactDistance > 0.f) || !d->isLayered(query)) {
+        if (!detail::isValidQuery(ray, query.tMin, end)) return false;
+        RayContext c(ray, query);
+        c.tMax = end;
+        detail::NearestHit unused;
+        return d->testPlanes<true>(c, unused) || d->traverse<true>(c, unused);
+    }
+    RayQuery within = query;
+    within.tMax = end;
+    return anyHit(ray, within);
+}
+
 bool Tracer::anyHit(const Ray &ray, const RayQuery &query) const {
     if (!detail::isValidQuery(ray, query)) return false;
     if (!(d->contactDistance > 0.f) || !d->isLayered(query)) {
@@ -707,11 +721,8 @@ uint32_t Tracer::Private::anyHitsInPacket(const Tracer &tracer, std::span<const 
                                           const float *tMax) const {
     if (!packetsPay() || (contactDistance > 0.f && isLayered(query))) {
         uint32_t result = 0;
-        RayQuery own = query;
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-            if (tMax) own.tMax = std::min(query.tMax, tMax[i]);
-            if (tracer.anyHit(rays[i], own)) result |= 1u << i;
-        }
+        for (std::size_t i = 0; i < rays.size(); ++i)
+            if (tMax ? tracer.anyHit(rays[i], query, tMax[i]) : tracer.anyHit(rays[i], query)) result |= 1u << i;
         return result;
     }
     PacketSetup s(rays, query, tMax);

@@ -174,10 +174,10 @@ IntegratorPlan WhittedIntegrator::plan(const RayPolicy &policy, StageSelection s
 
 float WhittedIntegrator::lightPassing(const Ray &shadowRay, float lightDistance, const RayQuery &shadowQuery,
                                       ShadowStage stage) const {
+    // Opaque occluders need only "is anything in the way" (any-hit, the cheap query).
+    if (stage != ShadowStage::TransparentWalk) return m_tracer.anyHit(shadowRay, shadowQuery, lightDistance) ? 0.f : 1.f;
     RayQuery query = shadowQuery;
     query.tMax = std::min(query.tMax, lightDistance);
-    // Opaque occluders need only "is anything in the way" (any-hit, the cheap query).
-    if (stage != ShadowStage::TransparentWalk) return m_tracer.anyHit(shadowRay, query) ? 0.f : 1.f;
 
     // Transparent occluders let their transparency through (Whitted's transparent shadows):
     // walk the hits along the same ray, each step starting just past the previous hit.
@@ -309,22 +309,26 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
 /// the cap in front of it), the lit side's normals, the material's terms, and what lies behind a
 /// translucent primary hit. Made by prepareShading(), lit by shadeLit().
 struct WhittedIntegrator::ShadingPoint {
-    Ray ray;
-    RayType type = RayType::Primary;
-    int depth = 0;
-    float travelled = 0.f;
-    Hit hit;
+    /// Leaves every member but `cap` to prepareShading(), which writes each one before it is
+    /// read: the members' own zeroing, a few hundred bytes a ray, showed in the profile.
+    ShadingPoint() {}
+
+    union { Ray ray; };
+    union { Hit hit; };
+    union { SurfaceInteraction si; };
+    union { detail::ShadedSurface surface; };
     std::optional<detail::ClipCap> cap;
-    SurfaceInteraction si;
-    detail::ShadedSurface surface;
-    glm::vec3 d{0.f};      ///< unit direction of the ray
-    float rayLength = 0.f; ///< |ray.direction|
-    float coneWidth = 0.f; ///< the ray cone's width at the surface
-    float shownT = 0.f;    ///< t of the point shown (the cap's, or the hit's)
-    bool entering = true;  ///< the ray meets the surface from the side its normal faces
-    glm::vec3 ng{0.f}, ns{0.f}; ///< geometric and shading normals on the lit side
-    float alpha = 1.f;          ///< opacity stage: the surface's share, blended over `behind`
-    glm::vec3 behind{0.f};
+    RayType type;
+    int depth;
+    float travelled;
+    glm::vec3 d;       ///< unit direction of the ray
+    float rayLength;   ///< |ray.direction|
+    float coneWidth;   ///< the ray cone's width at the surface
+    float shownT;      ///< t of the point shown (the cap's, or the hit's)
+    bool entering;     ///< the ray meets the surface from the side its normal faces
+    glm::vec3 ng, ns;  ///< geometric and shading normals on the lit side
+    float alpha;       ///< opacity stage: the surface's share, blended over `behind`
+    glm::vec3 behind;
 };
 
 namespace {
@@ -369,71 +373,9 @@ constexpr std::size_t kPacketLights = 8;
 
 } // namespace
 
-glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int depth, const Hit *closest,
-                                          const RayPolicy &policy, const IntegratorPlan &plan, RayCounters &counters,
-                                          float travelled) const {
-    ShadingPoint p;
-    glm::vec3 finished;
-    if (!prepareShading(ray, type, depth, closest, policy, plan, counters, travelled, p, finished)) return finished;
-    return shadeLit(p, policy, plan, counters, nullptr);
-}
-
-void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::span<const Hit> primaryHits,
-                                         uint32_t hitMask, const RayPolicy &policy, const IntegratorPlan &plan,
-                                         RayCounters &counters, std::span<glm::vec3> radiance) const {
-    const std::size_t count = primaryRays.size();
-    if (count > std::size_t(Tracer::kPacketSize) || primaryHits.size() < count || radiance.size() < count)
-        throw Error("integrator", "radianceFromHits takes at most " + std::to_string(Tracer::kPacketSize) +
-                                      " rays with as many hits and values, not " + std::to_string(count) + ", " +
-                                      std::to_string(primaryHits.size()) + " and " + std::to_string(radiance.size()));
-    std::array<ShadingPoint, Tracer::kPacketSize> points;
-    uint32_t lit = 0; // rays whose point goes on to the light loop
-    for (std::size_t i = 0; i < count; ++i) {
-        countRay(RayType::Primary, counters);
-        glm::vec3 finished;
-        if (prepareShading(primaryRays[i], RayType::Primary, 0, (hitMask >> i) & 1u ? &primaryHits[i] : nullptr, policy,
-                           plan, counters, 0.f, points[i], finished))
-            lit |= 1u << i;
-        else
-            radiance[i] = finishSample(finished, policy, plan, counters);
-    }
-    // Opaque occluders only (any-hit answers): the shadow rays of all points toward one light
-    // are one packet, coherent where the points are neighbours. A point on a cap has its own
-    // shadow query (the cut's clips added) and goes ray by ray, as do transparent walks.
-    uint32_t packeted = 0;
-    if (plan.shadows == ShadowStage::AnyHit)
-        for (uint32_t rest = lit; rest; rest &= rest - 1)
-            if (!points[size_t(std::countr_zero(rest))].cap) packeted |= rest & ~(rest - 1);
-    const std::vector<Light> &lights = m_tracer.scene().lights;
-    std::array<std::array<float, kPacketLights>, Tracer::kPacketSize> passed;
-    for (std::size_t l = 0; packeted && l < std::min(lights.size(), kPacketLights); ++l) {
-        std::array<Ray, Tracer::kPacketSize> rays;
-        std::array<float, Tracer::kPacketSize> distances;
-        std::array<int, Tracer::kPacketSize> pointOf;
-        std::size_t n = 0;
-        for (uint32_t rest = packeted; rest; rest &= rest - 1) {
-            const int i = std::countr_zero(rest);
-            const ShadingPoint &p = points[size_t(i)];
-            LightPath path;
-            if (!lightPath(p.si.position, p.ng, p.ns, lights[l], path)) continue;
-            rays[n] = shadowRayOf(p.si, p.ng, path.toLight);
-            distances[n] = path.distance;
-            pointOf[n++] = i;
-        }
-        if (n == 0) continue;
-        const uint32_t occluded =
-            m_tracer.anyHits({rays.data(), n}, policy.query(RayType::Shadow), {distances.data(), n});
-        for (std::size_t j = 0; j < n; ++j) passed[size_t(pointOf[j])][l] = (occluded >> j) & 1u ? 0.f : 1.f;
-    }
-    for (uint32_t rest = lit; rest; rest &= rest - 1) {
-        const std::size_t i = size_t(std::countr_zero(rest));
-        radiance[i] = finishSample(shadeLit(points[i], policy, plan, counters,
-                                            (packeted >> i) & 1u ? passed[i].data() : nullptr),
-                                   policy, plan, counters);
-    }
-}
-
-bool WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const Hit *closest,
+// Inlined into traceFromHit() and radianceFromHits(): as calls, the split of the shading into
+// two halves cost the ray-by-ray path (every secondary ray) several per cent.
+[[gnu::always_inline]] inline bool WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const Hit *closest,
                                        const RayPolicy &policy, const IntegratorPlan &plan, RayCounters &counters,
                                        float travelled, ShadingPoint &p, glm::vec3 &finished) const {
     const Scene &scene = m_tracer.scene();
@@ -557,28 +499,19 @@ glm::vec3 WhittedIntegrator::shown(const ShadingPoint &p, const glm::vec3 &surfa
     return p.alpha < 1.f ? p.alpha * front + (1.f - p.alpha) * p.behind : front;
 }
 
-glm::vec3 WhittedIntegrator::shadeLit(const ShadingPoint &p, const RayPolicy &policy, const IntegratorPlan &plan,
-                                      RayCounters &counters, const float *shadowAnswers) const {
+glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy &policy, const IntegratorPlan &plan,
+                                         RayCounters &counters, const float *shadowAnswers,
+                                         const RayQuery &shadowQuery) const {
     const Scene &scene = m_tracer.scene();
     const ShadingPolicy &shading = policy.shading;
     const PhongTerms &m = p.surface.phong;
-    const glm::vec3 &d = p.d, &ng = p.ng, &ns = p.ns;
-    const SurfaceInteraction &si = p.si;
-
-    // A cap is lit as if the cut were real: its shadow rays skip what the primary clips remove.
-    std::optional<RayQuery> cappedShadowQuery;
-    if (p.cap) {
-        cappedShadowQuery = policy.query(RayType::Shadow);
-        for (const ClipVolume &clip : policy.query(p.type).clips()) cappedShadowQuery->tryAddClip(clip);
-    }
-    const RayQuery &shadowQuery = cappedShadowQuery ? *cappedShadowQuery : policy.query(RayType::Shadow);
-
+    const glm::vec3 &ns = p.ns;
     // Eq. 1: A + Σ I·(P·(L·N) + Ks·S·(N·H)^Ps) / D
     glm::vec3 local = m.ambient * scene.ambientLight;
     for (std::size_t l = 0; l < scene.lights.size(); ++l) {
         const Light &light = scene.lights[l];
         LightPath path;
-        if (!lightPath(si.position, ng, ns, light, path)) continue;
+        if (!lightPath(p.si.position, p.ng, ns, light, path)) continue;
 
         glm::vec3 transmittance(1.f);
         if (plan.shadows != ShadowStage::Off) {
@@ -589,18 +522,38 @@ glm::vec3 WhittedIntegrator::shadeLit(const ShadingPoint &p, const RayPolicy &po
                 countRay(RayType::Shadow, counters);
                 passed = shadowAnswers && l < kPacketLights
                              ? shadowAnswers[l]
-                             : lightPassing(shadowRayOf(si, ng, path.toLight), path.distance, shadowQuery, plan.shadows);
+                             : lightPassing(shadowRayOf(p.si, p.ng, path.toLight), path.distance, shadowQuery,
+                                            plan.shadows);
                 if (plan.shadows != plan.forcedShadows) ++counters.skippedTransparentWalks;
             }
             // The blocked share of the light is dimmed by the policy's strength and tint.
             const glm::vec3 blocked = glm::mix(glm::vec3(1.f), shading.shadowTint, shading.shadowStrength);
             transmittance = glm::vec3(passed) + (1.f - passed) * blocked;
         }
-        const glm::vec3 h = glm::normalize(path.toLight - d);
+        const glm::vec3 h = glm::normalize(path.toLight - p.d);
         const float nDotH = std::max(glm::dot(ns, h), 0.f);
         const float specular = m.specular > 0.f ? m.specular * std::pow(nDotH, m.shininess) : 0.f;
         local += transmittance * light.intensity * (m.diffuse * path.nDotL + specular * m.specularColor) /
                  path.attenuation;
+    }
+    return local;
+}
+
+[[gnu::always_inline]] inline glm::vec3 WhittedIntegrator::shadeLit(const ShadingPoint &p, const RayPolicy &policy, const IntegratorPlan &plan,
+                                      RayCounters &counters, const float *shadowAnswers) const {
+    const ShadingPolicy &shading = policy.shading;
+    const PhongTerms &m = p.surface.phong;
+    const glm::vec3 &d = p.d, &ng = p.ng, &ns = p.ns;
+    const SurfaceInteraction &si = p.si;
+
+    glm::vec3 local;
+    if (p.cap) {
+        // A cap is lit as if the cut were real: its shadow rays skip what the primary clips remove.
+        RayQuery cappedShadowQuery = policy.query(RayType::Shadow);
+        for (const ClipVolume &clip : policy.query(p.type).clips()) cappedShadowQuery.tryAddClip(clip);
+        local = directLight(p, policy, plan, counters, shadowAnswers, cappedShadowQuery);
+    } else {
+        local = directLight(p, policy, plan, counters, shadowAnswers, policy.query(RayType::Shadow));
     }
 
     const int maxDepth = std::min(shading.maxDepth, kDepthCeiling);
@@ -651,6 +604,70 @@ glm::vec3 WhittedIntegrator::shadeLit(const ShadingPoint &p, const RayPolicy &po
         color += reflectWeight * tint * trace(reflectRay, RayType::Reflection, p.depth + 1, policy, plan, counters);
     }
     return shown(p, color + refractWeight * refracted, policy, counters);
+}
+
+glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int depth, const Hit *closest,
+                                          const RayPolicy &policy, const IntegratorPlan &plan, RayCounters &counters,
+                                          float travelled) const {
+    ShadingPoint p;
+    glm::vec3 finished;
+    if (!prepareShading(ray, type, depth, closest, policy, plan, counters, travelled, p, finished)) return finished;
+    return shadeLit(p, policy, plan, counters, nullptr);
+}
+
+void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::span<const Hit> primaryHits,
+                                         uint32_t hitMask, const RayPolicy &policy, const IntegratorPlan &plan,
+                                         RayCounters &counters, std::span<glm::vec3> radiance) const {
+    const std::size_t count = primaryRays.size();
+    if (count > std::size_t(Tracer::kPacketSize) || primaryHits.size() < count || radiance.size() < count)
+        throw Error("integrator", "radianceFromHits takes at most " + std::to_string(Tracer::kPacketSize) +
+                                      " rays with as many hits and values, not " + std::to_string(count) + ", " +
+                                      std::to_string(primaryHits.size()) + " and " + std::to_string(radiance.size()));
+    std::array<ShadingPoint, Tracer::kPacketSize> points;
+    uint32_t lit = 0; // rays whose point goes on to the light loop
+    for (std::size_t i = 0; i < count; ++i) {
+        countRay(RayType::Primary, counters);
+        glm::vec3 finished;
+        if (prepareShading(primaryRays[i], RayType::Primary, 0, (hitMask >> i) & 1u ? &primaryHits[i] : nullptr, policy,
+                           plan, counters, 0.f, points[i], finished))
+            lit |= 1u << i;
+        else
+            radiance[i] = finishSample(finished, policy, plan, counters);
+    }
+    // Opaque occluders only (any-hit answers): the shadow rays of all points toward one light
+    // are one packet, coherent where the points are neighbours. A point on a cap has its own
+    // shadow query (the cut's clips added) and goes ray by ray, as do transparent walks.
+    uint32_t packeted = 0;
+    if (plan.shadows == ShadowStage::AnyHit)
+        for (uint32_t rest = lit; rest; rest &= rest - 1)
+            if (!points[size_t(std::countr_zero(rest))].cap) packeted |= rest & ~(rest - 1);
+    const std::vector<Light> &lights = m_tracer.scene().lights;
+    std::array<std::array<float, kPacketLights>, Tracer::kPacketSize> passed;
+    for (std::size_t l = 0; packeted && l < std::min(lights.size(), kPacketLights); ++l) {
+        std::array<Ray, Tracer::kPacketSize> rays;
+        std::array<float, Tracer::kPacketSize> distances;
+        std::array<int, Tracer::kPacketSize> pointOf;
+        std::size_t n = 0;
+        for (uint32_t rest = packeted; rest; rest &= rest - 1) {
+            const int i = std::countr_zero(rest);
+            const ShadingPoint &p = points[size_t(i)];
+            LightPath path;
+            if (!lightPath(p.si.position, p.ng, p.ns, lights[l], path)) continue;
+            rays[n] = shadowRayOf(p.si, p.ng, path.toLight);
+            distances[n] = path.distance;
+            pointOf[n++] = i;
+        }
+        if (n == 0) continue;
+        const uint32_t occluded =
+            m_tracer.anyHits({rays.data(), n}, policy.query(RayType::Shadow), {distances.data(), n});
+        for (std::size_t j = 0; j < n; ++j) passed[size_t(pointOf[j])][l] = (occluded >> j) & 1u ? 0.f : 1.f;
+    }
+    for (uint32_t rest = lit; rest; rest &= rest - 1) {
+        const std::size_t i = size_t(std::countr_zero(rest));
+        radiance[i] = finishSample(shadeLit(points[i], policy, plan, counters,
+                                            (packeted >> i) & 1u ? passed[i].data() : nullptr),
+                                   policy, plan, counters);
+    }
 }
 
 } // namespace mvcl

@@ -52,6 +52,9 @@ public:
     bool closestHit(const Ray &ray, const RayQuery &query, Hit &hit) const;
     /// True if anything within the query is hit (shadow rays).
     bool anyHit(const Ray &ray, const RayQuery &query) const;
+    /// anyHit() with the range ending at min(query.tMax, tMax): a shadow ray toward a point light
+    /// at distance tMax, without a copy of the query.
+    bool anyHit(const Ray &ray, const RayQuery &query, float tMax) const;
     /// Most rays a packet query takes: a 4×4 tile.
     static constexpr int kPacketSize = 16;
     /// closestHit() of each ray under one shared query, traced together as a packet: for coherent

@@ -93,6 +93,10 @@ private:
     /// shadow ray the point casts (radianceFromHits traced them as packets).
     glm::vec3 shadeLit(const ShadingPoint &point, const RayPolicy &policy, const IntegratorPlan &plan,
                        RayCounters &counters, const float *shadowAnswers) const;
+    /// Eq. 1's ambient and direct terms at the point, shadow rays under `shadowQuery` (answers
+    /// from `shadowAnswers` as in shadeLit()).
+    glm::vec3 directLight(const ShadingPoint &point, const RayPolicy &policy, const IntegratorPlan &plan,
+                          RayCounters &counters, const float *shadowAnswers, const RayQuery &shadowQuery) const;
     /// A surface colour as the point shows it: edge lines over it, blended over what lies behind.
     glm::vec3 shown(const ShadingPoint &point, const glm::vec3 &surfaceColor, const RayPolicy &policy,
                     RayCounters &counters) const;
