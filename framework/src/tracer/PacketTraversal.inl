@@ -9,9 +9,9 @@
 // of hitPrecedes() (and layer priority's window, a function of the candidate set) is found
 // whatever order the packet visits the leaves in: the results are those of Tracer::closestHit()
 // bit for bit. Leaves run the watertight test with the rays in the lanes (one triangle against
-// all rays: intersectAcrossRays, the 4-wide kernel's operations per ray and triangle), or, for
-// layer priority (which needs the error bound) and leaves holding spheres, ray by ray through
-// testLeaf; either way every t and barycentric is the single-ray arithmetic.
+// all rays: intersectAcrossRays, the 4-wide kernel's operations per ray and triangle, with the
+// error bound layer priority orders by), or, for leaves holding spheres, ray by ray through
+// testLeaf; either way every t, barycentric and bound is the single-ray arithmetic.
 //
 // Each walk shares one near/far slab choice: tracePacket() splits the rays by direction octant.
 // Expects MVCL_PACKET_NS, MVCL_PACKET_AVX512 (0 or 1) and the helpers of Tracer.cpp.
@@ -186,9 +186,10 @@ inline Shear makeShear(const PacketRays &p, int kz) {
 /// Returns the rays hit (t, b1, b2 stored for them, each within its tCap); the rays with a zero
 /// edge function are left out and returned in `onEdge`, for the scalar test and its double
 /// fallback.
-template <bool Barycentrics>
+template <bool Barycentrics, bool OrderingError>
 inline unsigned intersectAcrossRays(const Shear &r, const detail::PrimBlock &b, int lane, unsigned rays,
-                                    const Lanes &tCap, float *tOut, float *b1Out, float *b2Out, unsigned &onEdge) {
+                                    const Lanes &tCap, float *tOut, float *b1Out, float *b2Out, float *tErrorOut,
+                                    unsigned &onEdge) {
     const Lanes zero = Lanes::all(0.f);
     const Lanes p0z = sub(Lanes::all(b.v[0][r.kz][lane]), r.oz);
     const Lanes p1z = sub(Lanes::all(b.v[1][r.kz][lane]), r.oz);
@@ -237,6 +238,14 @@ inline unsigned intersectAcrossRays(const Shear &r, const detail::PrimBlock &b, 
     const unsigned hits = candidates & compare<_CMP_GT_OQ>(t, zero) & compare<_CMP_NLE_UQ>(t, deltaT);
     if (hits) {
         t.store(tOut);
+        if (OrderingError) {
+            // orderingError() lane by lane, as watertightIntersect4() computes it.
+            const Lanes spread = add(add(abs(sub(z0, t)), abs(sub(z1, t))), abs(sub(z2, t)));
+            const Lanes g3 = Lanes::all(gamma(3));
+            const Lanes terms = add(add(mulUnfused(g3, mul(Lanes::all(2.f), maxZt)), mulUnfused(g3, abs(t))),
+                                    mulUnfused(mulUnfused(deltaE, spread), abs(invDet)));
+            mul(Lanes::all(2.f), terms).store(tErrorOut);
+        }
         if (Barycentrics) {
             mul(e1, invDet).store(b1Out);
             mul(e2, invDet).store(b2Out);
@@ -245,8 +254,9 @@ inline unsigned intersectAcrossRays(const Shear &r, const detail::PrimBlock &b, 
     return hits;
 }
 
-/// testLeaf() for every ray of `active` at once, triangle by triangle (leaves without spheres,
-/// closest-hit states that ignore the error bound). Same candidates, so the same results.
+/// testLeaf() for every ray of `active` at once, triangle by triangle (leaves without spheres),
+/// with the error bound where the closest-hit state uses it (layer priority). Same candidates
+/// with the same t, barycentrics and bounds, so the same results.
 /// Returns the rays whose result changed (closest hit) or that are occluded (any hit), with
 /// p.tCap and p.tHigh updated for them.
 template <bool AnyHit, class Bests>
@@ -254,7 +264,8 @@ unsigned leafAcrossRays(uint32_t leaf, unsigned active, const detail::PrimBlock 
                         const Shear *shears, unsigned shearLanes[3], PacketSetup &s, Bests &best) {
     PacketRays &p = s.p;
     const uint32_t first = WideLeaf::firstBlock(leaf), last = first + WideLeaf::blockCount(leaf);
-    alignas(64) float t[kPacketLanes], b1[kPacketLanes], b2[kPacketLanes];
+    alignas(64) float t[kPacketLanes], b1[kPacketLanes], b2[kPacketLanes], tError[kPacketLanes];
+    constexpr bool kUsesTError = !AnyHit && std::remove_reference_t<decltype(best[0])>::kUsesTError;
     unsigned changed = 0;
     for (int kz = 0; kz < 3; ++kz) {
         unsigned rays = active & shearLanes[kz];
@@ -265,9 +276,10 @@ unsigned leafAcrossRays(uint32_t leaf, unsigned active, const detail::PrimBlock 
             for (unsigned lanes = unsigned(triangleLanes(block, s.query->layerMask)); lanes; lanes &= lanes - 1) {
                 const int lane = std::countr_zero(lanes);
                 unsigned onEdge = 0;
-                unsigned hits = intersectAcrossRays<!AnyHit>(shear, block, lane, rays, Lanes::load(p.tCap), t, b1, b2, onEdge);
+                unsigned hits = intersectAcrossRays<!AnyHit, kUsesTError>(shear, block, lane, rays, Lanes::load(p.tCap), t,
+                                                                         b1, b2, tError, onEdge);
                 // A hit of ray i at (t, u, v): the query's range and clips, then the closest-hit state.
-                auto take = [&](int i, float ti, float u, float v) {
+                auto take = [&](int i, float ti, float u, float v, float tErr) {
                     const RayContext &c = s.context(i);
                     if (!c.acceptsT(ti)) return;
                     if (AnyHit) {
@@ -277,14 +289,14 @@ unsigned leafAcrossRays(uint32_t leaf, unsigned active, const detail::PrimBlock 
                         p.tHigh[i] = -detail::kInfinity;
                         return;
                     }
-                    if (!best[i].offer(c, triangleCandidate(info[4 * bi + unsigned(lane)], ti, u, v), 0.f)) return;
+                    if (!best[i].offer(c, triangleCandidate(info[4 * bi + unsigned(lane)], ti, u, v), tErr)) return;
                     changed |= 1u << i;
                     p.tCap[i] = std::min(c.tMax, best[i].cap());
                     p.tHigh[i] = p.tCap[i] * detail::kTraversalSlackUp;
                 };
                 for (; hits; hits &= hits - 1) {
                     const int i = std::countr_zero(hits);
-                    take(i, t[i], b1[i], b2[i]);
+                    take(i, t[i], b1[i], b2[i], kUsesTError ? tError[i] : 0.f);
                 }
                 for (; onEdge; onEdge &= onEdge - 1) {
                     const int i = std::countr_zero(onEdge);
@@ -292,7 +304,7 @@ unsigned leafAcrossRays(uint32_t leaf, unsigned active, const detail::PrimBlock 
                     TriangleHit h;
                     if (detail::watertightIntersect(*s.wrays[i], block.vertex(lane, 0), block.vertex(lane, 1),
                                             block.vertex(lane, 2), p.tCap[i], h))
-                        take(i, h.t, h.b1, h.b2);
+                        take(i, h.t, h.b1, h.b2, kUsesTError ? h.tError : 0.f);
                 }
                 if (AnyHit && !rays) break;
             }
@@ -300,13 +312,6 @@ unsigned leafAcrossRays(uint32_t leaf, unsigned active, const detail::PrimBlock 
         }
     }
     return changed;
-}
-
-/// Whether leaves are tested across rays (leafAcrossRays): any hit, and closest-hit states that
-/// ignore the error bound (NearestHit); layer priority goes ray by ray through testLeaf().
-template <bool AnyHit, class Bests>
-constexpr bool acrossRays() {
-    return AnyHit || !std::remove_reference_t<decltype(std::declval<Bests &>()[0])>::kUsesTError;
 }
 
 /// The walk of the rays of `lanes`, which all entered the root box and share the slab order
@@ -339,7 +344,7 @@ __attribute__((flatten)) unsigned walk(const detail::WideBvh &wide, unsigned lan
     for (;;) {
         if (WideLeaf::isLeaf(cur)) {
             bool changed = false;
-            if (acrossRays<AnyHit, Bests>() && !WideLeaf::hasSpheres(cur)) {
+            if (!WideLeaf::hasSpheres(cur)) {
                 const unsigned bits = leafAcrossRays<AnyHit>(cur, active, blocks, info, shears, shearLanes, s, best);
                 result |= bits;
                 changed = bits != 0;
@@ -456,11 +461,10 @@ unsigned tracePacket(const detail::WideBvh &wide, unsigned lanes, PacketSetup &s
     // The watertight constants of each dominant axis the entering rays have (usually one).
     Shear shears[3];
     unsigned shearLanes[3] = {};
-    if (acrossRays<AnyHit, Bests>())
-        for (int axis = 0; axis < 3; ++axis) {
-            shearLanes[axis] = s.dominantAxisLanes[axis] & entering;
-            if (shearLanes[axis]) shears[axis] = makeShear(p, axis);
-        }
+    for (int axis = 0; axis < 3; ++axis) {
+        shearLanes[axis] = s.dominantAxisLanes[axis] & entering;
+        if (shearLanes[axis]) shears[axis] = makeShear(p, axis);
+    }
     unsigned result = 0;
     for (int octant = 0; octant < 8; ++octant) {
         unsigned group = entering;
