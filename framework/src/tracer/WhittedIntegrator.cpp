@@ -375,9 +375,10 @@ constexpr std::size_t kPacketLights = 8;
 
 // Inlined into traceFromHit() and radianceFromHits(): as calls, the split of the shading into
 // two halves cost the ray-by-ray path (every secondary ray) several per cent.
-[[gnu::always_inline]] inline bool WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const Hit *closest,
-                                       const RayPolicy &policy, const IntegratorPlan &plan, RayCounters &counters,
-                                       float travelled, ShadingPoint &p, glm::vec3 &finished) const {
+[[gnu::always_inline]] inline bool
+WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const Hit *closest, const RayPolicy &policy,
+                                  const IntegratorPlan &plan, RayCounters &counters, float travelled, ShadingPoint &p,
+                                  glm::vec3 &finished) const {
     const Scene &scene = m_tracer.scene();
     const ShadingPolicy &shading = policy.shading;
     const RayQuery &query = policy.query(type);
@@ -391,8 +392,9 @@ constexpr std::size_t kPacketLights = 8;
     // Where a primary ray crosses a capped clip surface into a closed solid, it shows the cut
     // face there, as a solid face of that solid's material, in front of whatever lies inside.
     std::optional<detail::ClipCap> &cap = p.cap;
+    // Each union member of the point is first written as p.member = ... (which starts its life).
+    p.hit = closest ? *closest : Hit{};
     Hit &hit = p.hit;
-    hit = closest ? *closest : Hit{};
     const bool found = closest && skipCutOutHits(ray, query, hit);
     if (!found) hit = Hit{};
     SurfaceInteraction &si = p.si;
@@ -408,7 +410,7 @@ constexpr std::size_t kPacketLights = 8;
         else
             cap.reset();
     }
-    if (found || cap) si = m_tracer.interaction(ray, hit);
+    if (found || cap) p.si = m_tracer.interaction(ray, hit);
     if (!found && !cap) {
         // An outline is centred on the silhouette, so the background next to it gets half.
         if (!isPrimary || shading.edges.mode != EdgeLineMode::Outlines)
@@ -539,8 +541,9 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy 
     return local;
 }
 
-[[gnu::always_inline]] inline glm::vec3 WhittedIntegrator::shadeLit(const ShadingPoint &p, const RayPolicy &policy, const IntegratorPlan &plan,
-                                      RayCounters &counters, const float *shadowAnswers) const {
+[[gnu::always_inline]] inline glm::vec3 WhittedIntegrator::shadeLit(const ShadingPoint &p, const RayPolicy &policy,
+                                                                     const IntegratorPlan &plan, RayCounters &counters,
+                                                                     const float *shadowAnswers) const {
     const ShadingPolicy &shading = policy.shading;
     const PhongTerms &m = p.surface.phong;
     const glm::vec3 &d = p.d, &ng = p.ng, &ns = p.ns;
