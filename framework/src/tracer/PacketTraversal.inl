@@ -360,17 +360,6 @@ __attribute__((flatten)) unsigned walk(const detail::WideBvh &wide, unsigned lan
             }
         } else {
             const WideNode &n = nodes[cur];
-            // The quantised boxes (WideNode) dequantised once per node, eight lanes at a time,
-            // to the same exact floats as the single-ray test; each child lane is then
-            // broadcast against the rays.
-            alignas(32) float bounds[6][kWidth];
-            for (int slab = 0; slab < 6; ++slab) {
-                const int axis = slab < 3 ? slab : slab - 3;
-                const __m256i q = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(n.q[slab])));
-                const __m256i e = _mm256_set1_epi32(int(uint32_t(n.stepExponent[axis]) << 23));
-                _mm256_store_ps(bounds[slab], _mm256_add_ps(_mm256_castsi256_ps(_mm256_or_si256(q, e)),
-                                                            _mm256_set1_ps(n.originBias[axis])));
-            }
             Lanes tNear[kWidth];
             unsigned hit[kWidth];
             float key[kWidth];
@@ -378,12 +367,12 @@ __attribute__((flatten)) unsigned walk(const detail::WideBvh &wide, unsigned lan
             int count = 0;
             for (int lane = 0; lane < kWidth; ++lane) {
                 if (!(n.layerMask[lane] & layerMask)) continue;
-                const Lanes tx0 = mul(sub(Lanes::all(bounds[near[0]][lane]), ox), ix);
-                const Lanes ty0 = mul(sub(Lanes::all(bounds[near[1]][lane]), oy), iy);
-                const Lanes tz0 = mul(sub(Lanes::all(bounds[near[2]][lane]), oz), iz);
-                const Lanes tx1 = mul(sub(Lanes::all(bounds[far[0]][lane]), ox), fx);
-                const Lanes ty1 = mul(sub(Lanes::all(bounds[far[1]][lane]), oy), fy);
-                const Lanes tz1 = mul(sub(Lanes::all(bounds[far[2]][lane]), oz), fz);
+                const Lanes tx0 = mul(sub(Lanes::all(n.bounds[near[0]][lane]), ox), ix);
+                const Lanes ty0 = mul(sub(Lanes::all(n.bounds[near[1]][lane]), oy), iy);
+                const Lanes tz0 = mul(sub(Lanes::all(n.bounds[near[2]][lane]), oz), iz);
+                const Lanes tx1 = mul(sub(Lanes::all(n.bounds[far[0]][lane]), ox), fx);
+                const Lanes ty1 = mul(sub(Lanes::all(n.bounds[far[1]][lane]), oy), fy);
+                const Lanes tz1 = mul(sub(Lanes::all(n.bounds[far[2]][lane]), oz), fz);
                 Lanes tn = max(tx0, tLow);
                 tn = max(ty0, tn);
                 tn = max(tz0, tn);

@@ -24,7 +24,6 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <new>
 #include <type_traits>
 #include <string>

@@ -10,7 +10,6 @@
 #include <mvcl/core/WorkerPool.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <new>
@@ -33,89 +32,6 @@ template <class T>
 std::unique_ptr<T[], AlignedFree> allocateArray(std::size_t count) {
     return std::unique_ptr<T[], AlignedFree>(
         static_cast<T *>(allocateAligned(std::max<std::size_t>(1, count) * sizeof(T))));
-}
-
-/// The grid of one axis of a quantised node (WideNode): exponent field and origin bias.
-struct AxisGrid {
-    uint8_t exponent = 1;
-    float bias = std::numeric_limits<float>::quiet_NaN(); ///< NaN: no grid fits, axis untested
-};
-
-/// The finest grid step s = 2^e whose 256 points k·s … (k + 255)·s, k = floor(lo / s), reach
-/// hi and are all floats, with 2^23·s and the bias (k − 2^23)·s floats too (the conditions of
-/// WideNode's exact dequantisation). Done in double, where every value here is exact (floats
-/// scaled by powers of two, integers below 2^25). No grid for extents beyond ~2^112 or
-/// non-finite bounds: the axis is then left untested (NaN bias).
-AxisGrid axisGrid(float lo, float hi) {
-    AxisGrid g;
-    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo <= hi)) return g;
-    // Start at the step the extent needs, or the one the magnitude needs (|k| < 2^23), the
-    // larger; a step or two more at most when rounding pushes hi past the last point.
-    const double extent = double(hi) - double(lo);
-    const double magnitude = std::max(std::fabs(double(lo)), std::fabs(double(hi)));
-    int e = -149;
-    if (extent > 0.0) e = std::max(e, std::ilogb(extent / 255.0));
-    if (magnitude > 0.0) e = std::max(e, std::ilogb(magnitude) - 23);
-    for (; e <= 104; ++e) {
-        const double step = std::ldexp(1.0, e);
-        const double k = std::floor(double(lo) / step);
-        if (k <= -8388608.0 || k + 255.0 > 16777216.0) continue; // (k − 2^23) and (k + q) fit 24 bits
-        if (std::ceil(double(hi) / step) - k > 255.0) continue;
-        g.exponent = uint8_t(e + 150);
-        g.bias = float((k - 8388608.0) * step);
-        // The float dequantisation itself must reach hi (it is exact, so this only restates the
-        // double arithmetic above; kept as the guarantee the traversal relies on).
-        if (WideNode::dequantize(255, g.exponent, g.bias) >= hi && WideNode::dequantize(0, g.exponent, g.bias) <= lo)
-            return g;
-    }
-    return AxisGrid{};
-}
-
-/// The largest grid value whose dequantised bound is ≤ v (lower bounds round down).
-uint8_t quantizeDown(float v, const AxisGrid &g) {
-    if (std::isnan(g.bias)) return 0;
-    int q = int(std::clamp(std::floor((double(v) - double(WideNode::dequantize(0, g.exponent, g.bias))) /
-                                      std::ldexp(1.0, int(g.exponent) - 150)),
-                           0.0, 255.0));
-    while (q > 0 && WideNode::dequantize(uint8_t(q), g.exponent, g.bias) > v) --q;
-    while (q < 255 && WideNode::dequantize(uint8_t(q + 1), g.exponent, g.bias) <= v) ++q;
-    return uint8_t(q);
-}
-
-/// The smallest grid value whose dequantised bound is ≥ v (upper bounds round up).
-uint8_t quantizeUp(float v, const AxisGrid &g) {
-    if (std::isnan(g.bias)) return 255;
-    int q = int(std::clamp(std::ceil((double(v) - double(WideNode::dequantize(0, g.exponent, g.bias))) /
-                                     std::ldexp(1.0, int(g.exponent) - 150)),
-                           0.0, 255.0));
-    while (q < 255 && WideNode::dequantize(uint8_t(q), g.exponent, g.bias) < v) ++q;
-    while (q > 0 && WideNode::dequantize(uint8_t(q - 1), g.exponent, g.bias) >= v) --q;
-    return uint8_t(q);
-}
-
-/// Fills the grid and the quantised boxes of `node` from the exact child boxes of its first
-/// `count` lanes; the other lanes get the empty box (lower 255 > upper 0).
-void quantizeNode(WideNode &node, const BvhNode *const kids[kWidth], int count) {
-    node.pad = 0;
-    for (int a = 0; a < 3; ++a) {
-        float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-        for (int lane = 0; lane < count; ++lane) {
-            lo = std::min(lo, kids[lane]->bounds[a]);
-            hi = std::max(hi, kids[lane]->bounds[a + 3]);
-        }
-        const AxisGrid g = axisGrid(lo, hi);
-        node.stepExponent[a] = g.exponent;
-        node.originBias[a] = g.bias;
-        for (int lane = 0; lane < kWidth; ++lane) {
-            if (lane >= count) {
-                node.q[a][lane] = 255;
-                node.q[a + 3][lane] = 0;
-                continue;
-            }
-            node.q[a][lane] = quantizeDown(kids[lane]->bounds[a], g);
-            node.q[a + 3][lane] = quantizeUp(kids[lane]->bounds[a + 3], g);
-        }
-    }
 }
 
 uint32_t blocksOfLeaf(const BvhNode &leaf) { return (leaf.count() + 3) / 4; }
@@ -173,16 +89,18 @@ public:
         const int count = selectKids(m_nodes, n2, kids);
         const uint32_t index = m_nextNode++;
         WideNode &node = m_out.nodes[index];
-        const BvhNode *kidNodes[kWidth];
-        for (int lane = 0; lane < count; ++lane) kidNodes[lane] = &m_nodes[kids[lane]];
-        quantizeNode(node, kidNodes, count);
         for (int lane = 0; lane < kWidth; ++lane) {
             if (lane >= count) {
+                for (int a = 0; a < 3; ++a) {
+                    node.bounds[a][lane] = std::numeric_limits<float>::infinity();
+                    node.bounds[a + 3][lane] = -std::numeric_limits<float>::infinity();
+                }
                 node.child[lane] = 0;
                 node.layerMask[lane] = 0;
                 continue;
             }
             const BvhNode &k = m_nodes[kids[lane]];
+            for (int a = 0; a < 6; ++a) node.bounds[a][lane] = k.bounds[a];
             node.layerMask[lane] = k.layerMask;
             if (levels == 0 || (levels > 0 && k.isLeaf())) {
                 tasks->push_back(Task{kids[lane], index, lane});

@@ -57,37 +57,18 @@ struct NodeRay {
     }
 };
 
-#if MVCL_TRAVERSAL_AVX2
-/// The eight bounds of slab `slab`, dequantised (WideNode: the grid value q in the low mantissa
-/// bits under the axis's exponent field, plus the axis's bias; exact, so they are the bounds
-/// the collapse checked against the exact boxes).
-inline __m256 slab8(const WideNode &n, int slab, __m256i exponentBits, __m256 bias) {
-    const __m256i q = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(n.q[slab])));
-    return _mm256_add_ps(_mm256_castsi256_ps(_mm256_or_si256(q, exponentBits)), bias);
-}
-#elif defined(__SSE2__)
-/// Lanes [first, first + 4) of slab `slab`, dequantised as in the AVX2 variant's slab8 (SSE2
-/// has no byte-to-dword widening: two unpacks with zero).
-inline __m128 slab4(const WideNode &n, int slab, int first, __m128i exponentBits, __m128 bias) {
-    int32_t bytes;
-    std::memcpy(&bytes, n.q[slab] + first, sizeof bytes);
-    const __m128i zero = _mm_setzero_si128();
-    const __m128i q = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(bytes), zero), zero);
-    return _mm_add_ps(_mm_castsi128_ps(_mm_or_si128(q, exponentBits)), bias);
-}
-
-/// Lanes [first, first + 4) of intersectNode(); e/b: each axis's exponent bits and bias.
-inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 tHigh, const __m128i e[3],
-                         const __m128 b[3], float *tNear4) {
-    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(slab4(n, r.near[0], first, e[0], b[0]), r.ox), r.ix);
-    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(slab4(n, r.near[1], first, e[1], b[1]), r.oy), r.iy);
-    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(slab4(n, r.near[2], first, e[2], b[2]), r.oz), r.iz);
-    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(slab4(n, r.far[0], first, e[0], b[0]), r.ox), r.fx);
-    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(slab4(n, r.far[1], first, e[1], b[1]), r.oy), r.fy);
-    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(slab4(n, r.far[2], first, e[2], b[2]), r.oz), r.fz);
+#if !MVCL_TRAVERSAL_AVX2 && defined(__SSE2__)
+/// Lanes [first, first + 4) of intersectNode().
+inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 tHigh,
+                         float *tNear4) {
+    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[0]] + first), r.ox), r.ix);
+    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[1]] + first), r.oy), r.iy);
+    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[2]] + first), r.oz), r.iz);
+    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[0]] + first), r.ox), r.fx);
+    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[1]] + first), r.oy), r.fy);
+    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[2]] + first), r.oz), r.fz);
     // maxps/minps return the second operand when either is NaN: the running value survives a
-    // 0·∞ lane (or an untested axis's NaN bound) exactly like the scalar comparisons in
-    // intersectBox.
+    // 0·∞ lane exactly like the scalar comparisons in intersectBox.
     __m128 tNear = _mm_max_ps(tx0, r.tLow);
     tNear = _mm_max_ps(ty0, tNear);
     tNear = _mm_max_ps(tz0, tNear);
@@ -105,23 +86,17 @@ inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 
 }
 #endif
 
-/// Slab test of the children of a node (the arithmetic of intersectBox on the dequantised
-/// bounds, lane by lane; the far slabs carry the widening in invDirFar, see RayContext.h).
-/// Returns the bit mask of the lanes entered and their entry distances (tOut is 32-byte aligned).
+/// Slab test of the children of a node (the arithmetic of intersectBox, lane by lane; the far slabs
+/// carry the widening in invDirFar, see RayContext.h). Returns
+/// the bit mask of the lanes entered and their entry distances (tOut is 32-byte aligned).
 inline int intersectNode(const WideNode &n, const NodeRay &r, float tHigh, float tOut[kWidth]) {
 #if MVCL_TRAVERSAL_AVX2
-    const __m256i ex = _mm256_set1_epi32(int(uint32_t(n.stepExponent[0]) << 23));
-    const __m256i ey = _mm256_set1_epi32(int(uint32_t(n.stepExponent[1]) << 23));
-    const __m256i ez = _mm256_set1_epi32(int(uint32_t(n.stepExponent[2]) << 23));
-    const __m256 bx = _mm256_set1_ps(n.originBias[0]);
-    const __m256 by = _mm256_set1_ps(n.originBias[1]);
-    const __m256 bz = _mm256_set1_ps(n.originBias[2]);
-    const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(slab8(n, r.near[0], ex, bx), r.ox), r.ix);
-    const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(slab8(n, r.near[1], ey, by), r.oy), r.iy);
-    const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(slab8(n, r.near[2], ez, bz), r.oz), r.iz);
-    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(slab8(n, r.far[0], ex, bx), r.ox), r.fx);
-    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(slab8(n, r.far[1], ey, by), r.oy), r.fy);
-    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(slab8(n, r.far[2], ez, bz), r.oz), r.fz);
+    const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[0]]), r.ox), r.ix);
+    const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[1]]), r.oy), r.iy);
+    const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[2]]), r.oz), r.iz);
+    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[0]]), r.ox), r.fx);
+    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[1]]), r.oy), r.fy);
+    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[2]]), r.oz), r.fz);
     // vmaxps/vminps have the NaN rule of maxps/minps (second operand), as in the SSE path.
     __m256 tNear = _mm256_max_ps(tx0, r.tLow);
     tNear = _mm256_max_ps(ty0, tNear);
@@ -140,20 +115,14 @@ inline int intersectNode(const WideNode &n, const NodeRay &r, float tHigh, float
     return _mm256_movemask_ps(ok) & ~masked;
 #elif defined(__SSE2__)
     const __m128 high = _mm_set1_ps(tHigh);
-    __m128i e[3];
-    __m128 b[3];
-    for (int a = 0; a < 3; ++a) {
-        e[a] = _mm_set1_epi32(int(uint32_t(n.stepExponent[a]) << 23));
-        b[a] = _mm_set1_ps(n.originBias[a]);
-    }
-    return intersectHalf(n, r, 0, high, e, b, tOut) | (intersectHalf(n, r, 4, high, e, b, tOut + 4) << 4);
+    return intersectHalf(n, r, 0, high, tOut) | (intersectHalf(n, r, 4, high, tOut + 4) << 4);
 #else
     const RayContext &c = r.c;
     int bits = 0;
     for (int lane = 0; lane < kWidth; ++lane) {
         if (!(n.layerMask[lane] & c.layerMask)) continue;
-        const float b[6] = {n.bound(0, lane), n.bound(1, lane), n.bound(2, lane),
-                            n.bound(3, lane), n.bound(4, lane), n.bound(5, lane)};
+        const float b[6] = {n.bounds[0][lane], n.bounds[1][lane], n.bounds[2][lane],
+                            n.bounds[3][lane], n.bounds[4][lane], n.bounds[5][lane]};
         if (intersectBox(b, c, tHigh, tOut[lane])) bits |= 1 << lane;
     }
     return bits;
