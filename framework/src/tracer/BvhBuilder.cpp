@@ -8,6 +8,7 @@
 // collapse lays out its output independently of them.
 
 #include "Bvh.h"
+#include "TraversalIsa.h"
 #include "core/WorkerArena_p.h"
 
 #include <glm/common.hpp>
@@ -34,6 +35,14 @@
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
+// The AVX2 binning is compiled for its own function only (#pragma GCC target below) and chosen
+// at run time, as the AVX2 traversal is.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define MVCL_HAVE_AVX2_BINNING 1
+#include <immintrin.h>
+#else
+#define MVCL_HAVE_AVX2_BINNING 0
 #endif
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -259,6 +268,127 @@ struct BinSet {
     }
 };
 
+#if MVCL_HAVE_AVX2_BINNING
+#pragma GCC push_options
+#pragma GCC target("avx2")
+/// BinSet with AVX2, for the binning pass that dominates the build (half of findSplit's
+/// instructions, 63 per primitive with SSE2). A bin is one 256-bit register holding
+/// [min x, y, z, 0 | −max x, y, z, −0], so growing it by a primitive is a single vminps of the
+/// primitive's 32-byte record with its upper half negated (max(a, b) = −min(−a, −b), exact, and
+/// with the operand order of Box4::grow a NaN lane takes the primitive's value in both forms).
+/// The bin indices are Binner::binsOf()'s: the same float operations on the same masked lanes,
+/// the clamps with pminsd/pmaxsd.
+struct BinSet8 {
+    __m256 boxes[3][kBins];
+    uint32_t counts[3][kBins];
+
+    explicit BinSet8(int nBins) {
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < nBins; ++b) {
+                boxes[axis][b] = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+                counts[axis][b] = 0;
+            }
+    }
+
+    void add(const Binner &binner, const BuildPrim *prims, uint32_t begin, uint32_t end) {
+        // Lanes 3 and 7 (id, layer bit) cleared as in PrimLanes: as floats they may be denormals.
+        const __m256 xyz = _mm256_castsi256_ps(_mm256_setr_epi32(-1, -1, -1, 0, -1, -1, -1, 0));
+        const __m256 negateUpper = _mm256_castsi256_ps(_mm256_setr_epi32(
+            0, 0, 0, 0, int(0x80000000u), int(0x80000000u), int(0x80000000u), int(0x80000000u)));
+        const __m128 half = _mm_set1_ps(0.5f);
+        const __m128 cmin = _mm_setr_ps(binner.cmin.x, binner.cmin.y, binner.cmin.z, 0.f);
+        const __m128 scale = _mm_setr_ps(binner.scale.x, binner.scale.y, binner.scale.z, 0.f);
+        const __m128i last = _mm_set1_epi32(binner.nBins - 1);
+        const __m128i zero = _mm_setzero_si128();
+        for (uint32_t i = begin; i < end; ++i) {
+            const __m256 p = _mm256_and_ps(_mm256_loadu_ps(&prims[i].lo.x), xyz);
+            const __m128 lo = _mm256_castps256_ps128(p), hi = _mm256_extractf128_ps(p, 1);
+            // PrimLanes::c and Binner::binsOf, operation for operation.
+            const __m128 c = _mm_add_ps(_mm_mul_ps(lo, half), _mm_mul_ps(hi, half));
+            const __m128i raw = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(c, cmin), scale));
+            const __m128i b = _mm_max_epi32(_mm_min_epi32(raw, last), zero);
+            const __m256 q = _mm256_xor_ps(p, negateUpper);
+            const int bx = _mm_cvtsi128_si32(b), by = _mm_extract_epi32(b, 1), bz = _mm_extract_epi32(b, 2);
+            boxes[0][bx] = _mm256_min_ps(boxes[0][bx], q);
+            boxes[1][by] = _mm256_min_ps(boxes[1][by], q);
+            boxes[2][bz] = _mm256_min_ps(boxes[2][bz], q);
+            ++counts[0][bx];
+            ++counts[1][by];
+            ++counts[2][bz];
+        }
+    }
+    void merge(const BinSet8 &other, int nBins) {
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < nBins; ++b) {
+                boxes[axis][b] = _mm256_min_ps(boxes[axis][b], other.boxes[axis][b]);
+                counts[axis][b] += other.counts[axis][b];
+            }
+    }
+};
+
+/// Box4::halfArea() of a bin box in BinSet8's form: lo + (−hi) = −(hi − lo) exactly (rounding to
+/// nearest is symmetric), and the products of two negated extents are those of the extents, so
+/// the same double value, operation for operation.
+inline double halfArea8(__m256 box) {
+    alignas(16) float d[4];
+    _mm_store_ps(d, _mm_add_ps(_mm256_castps256_ps128(box), _mm256_extractf128_ps(box, 1)));
+    return double(d[0]) * d[1] + double(d[1]) * d[2] + double(d[2]) * d[0];
+}
+
+/// Builder::findSplit's binning and sweep on BinSet8: the same bins, costs and comparisons in
+/// the same order, so the same split (the tests build trees both ways and compare them).
+void findSplitAvx2(const Binner &binner, const BuildPrim *prims, uint32_t begin, uint32_t end, bool halves,
+                   int &bestAxis, int &bestSplit, double &bestCost) {
+    const int nBins = binner.nBins;
+    BinSet8 all(nBins);
+    if (halves) {
+        // As in findSplit: the halves as two isolated tasks, merged exactly.
+        const uint32_t mid = begin + (end - begin) / 2;
+        BinSet8 upper(nBins);
+        tbb::this_task_arena::isolate([&] {
+            tbb::parallel_invoke([&] { all.add(binner, prims, begin, mid); },
+                                 [&] { upper.add(binner, prims, mid, end); });
+        });
+        all.merge(upper, nBins);
+    } else {
+        all.add(binner, prims, begin, end);
+    }
+    const __m256 empty = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+    for (int axis = 0; axis < 3; ++axis) {
+        if (binner.scale[axis] == 0.f) continue;
+        const __m256 *axisBins = all.boxes[axis];
+        const uint32_t *axisCounts = all.counts[axis];
+        double rightCost[kBins];
+        __m256 acc = empty;
+        uint32_t count = 0;
+        for (int b = nBins - 1; b > 0; --b) {
+            acc = _mm256_min_ps(acc, axisBins[b]);
+            count += axisCounts[b];
+            rightCost[b] = count ? halfArea8(acc) * blocksOf(count) : -1.0;
+        }
+        acc = empty;
+        count = 0;
+        for (int b = 0; b < nBins - 1; ++b) {
+            acc = _mm256_min_ps(acc, axisBins[b]);
+            count += axisCounts[b];
+            if (count == 0 || rightCost[b + 1] < 0.0) continue;
+            const double cost = halfArea8(acc) * blocksOf(count) + rightCost[b + 1];
+            if (cost < bestCost) bestCost = cost, bestAxis = axis, bestSplit = b;
+        }
+    }
+}
+#pragma GCC pop_options
+
+/// Set by tests (forceSseBinning(), TraversalIsa.h) to run the SSE2 binning on an AVX2 CPU.
+std::atomic<bool> g_forceSseBinning{false};
+
+/// Whether findSplit runs findSplitAvx2 (the CPU has AVX2 and no test forces SSE2).
+bool avx2Binning() {
+    static const bool available = __builtin_cpu_supports("avx2");
+    return available && !g_forceSseBinning.load(std::memory_order_relaxed);
+}
+#endif
+
 /// Subtree builds are pushed as tasks whenever a node is large enough, at any depth, and idle
 /// threads take them: with a fixed spawn depth a single large subtree below it kept one core busy
 /// while the other waited at the end of the build. Tasks never wait for one another (results
@@ -359,9 +489,13 @@ private:
     /// leaf cost of each side counted in blocks.
     void findSplit(const Binner &binner, uint32_t begin, uint32_t end, int &bestAxis,
                    int &bestSplit, double &bestCost) const {
+        const bool halves = m_tasks && end - begin >= kMinParallelBinning;
+#if MVCL_HAVE_AVX2_BINNING
+        if (avx2Binning()) return findSplitAvx2(binner, m_prims, begin, end, halves, bestAxis, bestSplit, bestCost);
+#endif
         const int nBins = binner.nBins;
         BinSet all(nBins);
-        if (m_tasks && end - begin >= kMinParallelBinning) {
+        if (halves) {
             // The top nodes would otherwise bin alone: bin the halves as two tasks, so an idle
             // thread can take one. Merging bins (min/max and integer counts) is exact, so the
             // result is the same whoever bins which half. Isolated: while the other half is
@@ -459,6 +593,14 @@ std::unique_ptr<BvhNode[], AlignedFree> allocateNodes(std::size_t count) {
 }
 
 } // namespace
+
+void forceSseBinning(bool force) {
+#if MVCL_HAVE_AVX2_BINNING
+    g_forceSseBinning.store(force);
+#else
+    (void)force;
+#endif
+}
 
 Bvh buildBvh(BvhBuildInput input) {
     Bvh bvh;
