@@ -280,14 +280,14 @@ struct BinSet {
 /// the clamps with pminsd/pmaxsd.
 struct BinSet8 {
     __m256 boxes[3][kBins];
-    uint32_t counts[3][kBins];
+    /// [bin][axis], axis 3 unused: the sweep loads the three axes' counts of a bin at once.
+    alignas(16) uint32_t counts[kBins][4];
 
     explicit BinSet8(int nBins) {
-        for (int axis = 0; axis < 3; ++axis)
-            for (int b = 0; b < nBins; ++b) {
-                boxes[axis][b] = _mm256_set1_ps(std::numeric_limits<float>::infinity());
-                counts[axis][b] = 0;
-            }
+        for (int b = 0; b < nBins; ++b) {
+            for (int axis = 0; axis < 3; ++axis) boxes[axis][b] = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+            _mm_store_si128(reinterpret_cast<__m128i *>(counts[b]), _mm_setzero_si128());
+        }
     }
 
     void add(const Binner &binner, const BuildPrim *prims, uint32_t begin, uint32_t end) {
@@ -312,31 +312,44 @@ struct BinSet8 {
             boxes[0][bx] = _mm256_min_ps(boxes[0][bx], q);
             boxes[1][by] = _mm256_min_ps(boxes[1][by], q);
             boxes[2][bz] = _mm256_min_ps(boxes[2][bz], q);
-            ++counts[0][bx];
-            ++counts[1][by];
-            ++counts[2][bz];
+            ++counts[bx][0];
+            ++counts[by][1];
+            ++counts[bz][2];
         }
     }
     void merge(const BinSet8 &other, int nBins) {
-        for (int axis = 0; axis < 3; ++axis)
-            for (int b = 0; b < nBins; ++b) {
+        for (int b = 0; b < nBins; ++b) {
+            for (int axis = 0; axis < 3; ++axis)
                 boxes[axis][b] = _mm256_min_ps(boxes[axis][b], other.boxes[axis][b]);
-                counts[axis][b] += other.counts[axis][b];
-            }
+            const __m128i *o = reinterpret_cast<const __m128i *>(other.counts[b]);
+            __m128i *c = reinterpret_cast<__m128i *>(counts[b]);
+            _mm_store_si128(c, _mm_add_epi32(_mm_load_si128(c), _mm_load_si128(o)));
+        }
     }
 };
 
-/// Box4::halfArea() of a bin box in BinSet8's form: lo + (−hi) = −(hi − lo) exactly (rounding to
-/// nearest is symmetric), and the products of two negated extents are those of the extents, so
-/// the same double value, operation for operation.
-inline double halfArea8(__m256 box) {
-    alignas(16) float d[4];
-    _mm_store_ps(d, _mm_add_ps(_mm256_castps256_ps128(box), _mm256_extractf128_ps(box, 1)));
-    return double(d[0]) * d[1] + double(d[1]) * d[2] + double(d[2]) * d[0];
+/// The SAH terms of the three axes' accumulated boxes at once, one axis per double lane:
+/// Box4::halfArea() · blocksOf(count), with count 0 giving −1 (no box). In BinSet8's form
+/// lo + (−hi) = −(hi − lo) exactly (rounding to nearest is symmetric) and the products of two
+/// negated extents are those of the extents, so each lane is the double value Box4 computes,
+/// operation for operation: (dx·dy + dy·dz) + dz·dx, then the product with the block count.
+inline __m256d sahTerms(const __m256 acc[3], __m128i count) {
+    __m128 e0 = _mm_add_ps(_mm256_castps256_ps128(acc[0]), _mm256_extractf128_ps(acc[0], 1));
+    __m128 e1 = _mm_add_ps(_mm256_castps256_ps128(acc[1]), _mm256_extractf128_ps(acc[1], 1));
+    __m128 e2 = _mm_add_ps(_mm256_castps256_ps128(acc[2]), _mm256_extractf128_ps(acc[2], 1));
+    __m128 e3 = _mm_setzero_ps();
+    _MM_TRANSPOSE4_PS(e0, e1, e2, e3); // e0: the x extents of axes 0, 1, 2; e1: y; e2: z
+    const __m256d dx = _mm256_cvtps_pd(e0), dy = _mm256_cvtps_pd(e1), dz = _mm256_cvtps_pd(e2);
+    const __m256d area = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dy), _mm256_mul_pd(dy, dz)), _mm256_mul_pd(dz, dx));
+    const __m128i blocks = _mm_srli_epi32(_mm_add_epi32(count, _mm_set1_epi32(int(kBlockSize) - 1)), 2);
+    static_assert(kBlockSize == 4, "blocks = (count + 3) >> 2");
+    const __m256d none = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpeq_epi32(count, _mm_setzero_si128())));
+    return _mm256_blendv_pd(_mm256_mul_pd(area, _mm256_cvtepi32_pd(blocks)), _mm256_set1_pd(-1.0), none);
 }
 
-/// Builder::findSplit's binning and sweep on BinSet8: the same bins, costs and comparisons in
-/// the same order, so the same split (the tests build trees both ways and compare them).
+/// Builder::findSplit's binning and sweep on BinSet8, the three axes' sweeps side by side in
+/// double lanes: the same costs, compared in findSplit's order (axis by axis, bin by bin), so
+/// the same split (the tests build trees both ways and compare them).
 void findSplitAvx2(const Binner &binner, const BuildPrim *prims, uint32_t begin, uint32_t end, bool halves,
                    int &bestAxis, int &bestSplit, double &bestCost) {
     const int nBins = binner.nBins;
@@ -354,27 +367,32 @@ void findSplitAvx2(const Binner &binner, const BuildPrim *prims, uint32_t begin,
         all.add(binner, prims, begin, end);
     }
     const __m256 empty = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+    alignas(32) double rightCost[kBins][4];
+    __m256 acc[3] = {empty, empty, empty};
+    __m128i count = _mm_setzero_si128();
+    for (int b = nBins - 1; b > 0; --b) {
+        for (int axis = 0; axis < 3; ++axis) acc[axis] = _mm256_min_ps(acc[axis], all.boxes[axis][b]);
+        count = _mm_add_epi32(count, _mm_load_si128(reinterpret_cast<const __m128i *>(all.counts[b])));
+        _mm256_store_pd(rightCost[b], sahTerms(acc, count));
+    }
+    // cost[b]: left side up to bin b plus right side from b + 1; NaN where findSplit skips
+    // (no primitive on either side), which never compares below bestCost.
+    alignas(32) double cost[kBins][4];
+    acc[0] = acc[1] = acc[2] = empty;
+    count = _mm_setzero_si128();
+    const __m256d zero = _mm256_setzero_pd();
+    const __m256d nan = _mm256_set1_pd(std::numeric_limits<double>::quiet_NaN());
+    for (int b = 0; b < nBins - 1; ++b) {
+        for (int axis = 0; axis < 3; ++axis) acc[axis] = _mm256_min_ps(acc[axis], all.boxes[axis][b]);
+        count = _mm_add_epi32(count, _mm_load_si128(reinterpret_cast<const __m128i *>(all.counts[b])));
+        const __m256d left = sahTerms(acc, count), right = _mm256_load_pd(rightCost[b + 1]);
+        const __m256d skip = _mm256_or_pd(_mm256_cmp_pd(left, zero, _CMP_LT_OQ), _mm256_cmp_pd(right, zero, _CMP_LT_OQ));
+        _mm256_store_pd(cost[b], _mm256_blendv_pd(_mm256_add_pd(left, right), nan, skip));
+    }
     for (int axis = 0; axis < 3; ++axis) {
         if (binner.scale[axis] == 0.f) continue;
-        const __m256 *axisBins = all.boxes[axis];
-        const uint32_t *axisCounts = all.counts[axis];
-        double rightCost[kBins];
-        __m256 acc = empty;
-        uint32_t count = 0;
-        for (int b = nBins - 1; b > 0; --b) {
-            acc = _mm256_min_ps(acc, axisBins[b]);
-            count += axisCounts[b];
-            rightCost[b] = count ? halfArea8(acc) * blocksOf(count) : -1.0;
-        }
-        acc = empty;
-        count = 0;
-        for (int b = 0; b < nBins - 1; ++b) {
-            acc = _mm256_min_ps(acc, axisBins[b]);
-            count += axisCounts[b];
-            if (count == 0 || rightCost[b + 1] < 0.0) continue;
-            const double cost = halfArea8(acc) * blocksOf(count) + rightCost[b + 1];
-            if (cost < bestCost) bestCost = cost, bestAxis = axis, bestSplit = b;
-        }
+        for (int b = 0; b < nBins - 1; ++b)
+            if (cost[b][axis] < bestCost) bestCost = cost[b][axis], bestAxis = axis, bestSplit = b;
     }
 }
 #pragma GCC pop_options
