@@ -395,6 +395,72 @@ void findSplitAvx2(const Binner &binner, const BuildPrim *prims, uint32_t begin,
             if (cost[b][axis] < bestCost) bestCost = cost[b][axis], bestAxis = axis, bestSplit = b;
     }
 }
+/// Builder::partition with AVX2: the same swaps in the same order (each primitive's side is
+/// Binner::binOf's, from the same float operations on its centroid lane), and both sides' bounds
+/// grown as RangeBounds::grow does, with the primitive's loads and centroid shared between the
+/// side test and the bounds.
+uint32_t partitionAvx2(const Binner &binner, int axis, int split, BuildPrim *prims, uint32_t begin, uint32_t end,
+                       RangeBounds &leftOut, RangeBounds &rightOut) {
+    const __m256 xyz = _mm256_castsi256_ps(_mm256_setr_epi32(-1, -1, -1, 0, -1, -1, -1, 0));
+    const __m256 negateUpper = _mm256_castsi256_ps(_mm256_setr_epi32(
+        0, 0, 0, 0, int(0x80000000u), int(0x80000000u), int(0x80000000u), int(0x80000000u)));
+    const __m128 half = _mm_set1_ps(0.5f);
+    const __m128 cmin = _mm_set1_ps(binner.cmin[axis]), scale = _mm_set1_ps(binner.scale[axis]);
+    const int last = binner.nBins - 1;
+    // binOf: c = lo·½ + hi·½, int((c − cmin)·scale), at most the last bin; the centroid of all
+    // three axes as PrimLanes computes it, then the one lane of `axis`.
+    struct Prim {
+        __m256 q, c;
+        int bin;
+    };
+    auto load = [&](const BuildPrim &bp) {
+        const __m256 p = _mm256_and_ps(_mm256_loadu_ps(&bp.lo.x), xyz);
+        const __m128 c = _mm_add_ps(_mm_mul_ps(_mm256_castps256_ps128(p), half),
+                                    _mm_mul_ps(_mm256_extractf128_ps(p, 1), half));
+        alignas(16) float cs[4];
+        _mm_store_ps(cs, c);
+        const int b = _mm_cvtt_ss2si(_mm_mul_ss(_mm_sub_ss(_mm_set_ss(cs[axis]), cmin), scale));
+        return Prim{_mm256_xor_ps(p, negateUpper), _mm256_xor_ps(_mm256_set_m128(c, c), negateUpper),
+                    b < last ? b : last};
+    };
+    // Both sides' geometry and centroid bounds in BinSet8's form ([min | −max], one vminps to
+    // grow each), handed back as RangeBounds at the end (exact: min, max and negation).
+    const __m256 empty = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+    __m256 left[2] = {empty, empty}, right[2] = {empty, empty};
+    auto grow = [](__m256 r[2], const Prim &p) {
+        r[0] = _mm256_min_ps(r[0], p.q);
+        r[1] = _mm256_min_ps(r[1], p.c);
+    };
+    auto bounds = [](const __m256 r[2]) {
+        const __m128 sign = _mm_castsi128_ps(_mm_set1_epi32(int(0x80000000u)));
+        RangeBounds out;
+        out.box.grow(_mm256_castps256_ps128(r[0]), _mm_xor_ps(_mm256_extractf128_ps(r[0], 1), sign));
+        out.cbox.grow(_mm256_castps256_ps128(r[1]), _mm_xor_ps(_mm256_extractf128_ps(r[1], 1), sign));
+        return out;
+    };
+    uint32_t i = begin, j = end;
+    for (;;) {
+        Prim pi{}, pj{};
+        while (i < j && (pi = load(prims[i])).bin <= split) {
+            grow(left, pi);
+            ++i;
+        }
+        while (i < j && (pj = load(prims[j - 1])).bin > split) {
+            grow(right, pj);
+            --j;
+        }
+        if (i == j) break;
+        // prims[i] belongs right, prims[j − 1] left.
+        std::swap(prims[i], prims[j - 1]);
+        grow(left, pj);
+        grow(right, pi);
+        ++i;
+        --j;
+    }
+    leftOut = bounds(left);
+    rightOut = bounds(right);
+    return i;
+}
 #pragma GCC pop_options
 
 /// Set by tests (forceSseBinning(), TraversalIsa.h) to run the SSE2 binning on an AVX2 CPU.
@@ -456,6 +522,10 @@ public:
         uint32_t mid;
         RangeBounds left, right;
         if (bestAxis >= 0) {
+#if MVCL_HAVE_AVX2_BINNING
+            if (avx2Binning()) mid = partitionAvx2(binner, bestAxis, bestSplit, m_prims, begin, end, left, right);
+            else
+#endif
             mid = partition(binner, bestAxis, bestSplit, begin, end, left, right);
         } else {
             // No usable split (coincident centroids, or too deep): object median along the
