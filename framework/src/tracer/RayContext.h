@@ -9,7 +9,9 @@
 
 #include <glm/vec3.hpp>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -70,10 +72,12 @@ struct RayContext {
         invDirFar = invDir * kBoxFarScale;
         for (int k = 0; k < 3; ++k) {
             // IEEE division keeps the sign of zero: 1/(−0) = −∞, so the slab order below is
-            // right for ±0 components too.
-            const bool negative = std::signbit(invDir[k]);
-            nearIdx[k] = negative ? k + 3 : k;
-            farIdx[k] = negative ? k : k + 3;
+            // right for ±0 components too. Arithmetic on the sign bit, not a choice: compiled
+            // as branches, the three signs of incoherent rays (diffuse bounces) were
+            // mispredicted half of the time.
+            const int negative = int(std::bit_cast<uint32_t>(invDir[k]) >> 31);
+            nearIdx[k] = k + 3 * negative;
+            farIdx[k] = k + 3 - 3 * negative;
         }
         tLow = tMin > 0.f ? tMin * kTraversalSlackDown : 0.f;
     }
