@@ -36,8 +36,8 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-// The AVX2 binning is compiled for its own function only (#pragma GCC target below) and chosen
-// at run time, as the AVX2 traversal is.
+// The AVX2 binning, SAH sweep and partition are compiled for their own functions only (#pragma
+// GCC target below) and chosen at run time, as the AVX2 traversal is.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #define MVCL_HAVE_AVX2_BINNING 1
 #include <immintrin.h>
@@ -395,6 +395,7 @@ void findSplitAvx2(const Binner &binner, const BuildPrim *prims, uint32_t begin,
             if (cost[b][axis] < bestCost) bestCost = cost[b][axis], bestAxis = axis, bestSplit = b;
     }
 }
+
 /// Builder::partition with AVX2: the same swaps in the same order (each primitive's side is
 /// Binner::binOf's, from the same float operations on its centroid lane), and both sides' bounds
 /// grown as RangeBounds::grow does, with the primitive's loads and centroid shared between the
@@ -463,10 +464,11 @@ uint32_t partitionAvx2(const Binner &binner, int axis, int split, BuildPrim *pri
 }
 #pragma GCC pop_options
 
-/// Set by tests (forceSseBinning(), TraversalIsa.h) to run the SSE2 binning on an AVX2 CPU.
+/// Set by tests (forceSseBinning(), TraversalIsa.h) to run the SSE2 build passes on an AVX2 CPU.
 std::atomic<bool> g_forceSseBinning{false};
 
-/// Whether findSplit runs findSplitAvx2 (the CPU has AVX2 and no test forces SSE2).
+/// Whether findSplit and the partition run their AVX2 variants (the CPU has AVX2 and no test
+/// forces SSE2).
 bool avx2Binning() {
     static const bool available = __builtin_cpu_supports("avx2");
     return available && !g_forceSseBinning.load(std::memory_order_relaxed);

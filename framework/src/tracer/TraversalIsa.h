@@ -9,8 +9,8 @@ namespace mvcl::detail {
 /// Forces (or stops forcing) the SSE traversal for Tracers constructed afterwards.
 void forceSseTraversal(bool force);
 
-/// Forces (or stops forcing) the SSE2 binning of BVH builds started afterwards; the AVX2 binning
-/// must build the same tree (tests compare them).
+/// Forces (or stops forcing) the SSE2 binning, SAH sweep and partition of BVH builds started
+/// afterwards; the AVX2 ones must build the same tree (tests compare them).
 void forceSseBinning(bool force);
 
 /// True if this build has the AVX2 traversal and the CPU supports it.
