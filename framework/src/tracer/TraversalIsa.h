@@ -1,12 +1,17 @@
 #pragma once
 // Private: which compiled variant of the wide-BVH traversal a Tracer uses (WideTraversal.inl).
 // A Tracer picks AVX2 when the CPU has it; tests force the SSE baseline to check that both give
-// bit-identical results. Packets likewise: AVX-512 or AVX2, limited by tests to check each.
+// bit-identical results. Packets likewise: AVX-512 or AVX2, limited by tests to check each. The
+// BVH build's binning too: AVX2 or SSE2, which must build the same tree.
 
 namespace mvcl::detail {
 
 /// Forces (or stops forcing) the SSE traversal for Tracers constructed afterwards.
 void forceSseTraversal(bool force);
+
+/// Forces (or stops forcing) the SSE2 binning, SAH sweep and partition of BVH builds started
+/// afterwards; the AVX2 ones must build the same tree (tests compare them).
+void forceSseBinning(bool force);
 
 /// True if this build has the AVX2 traversal and the CPU supports it.
 bool avx2TraversalAvailable();

@@ -18,7 +18,9 @@ namespace mvcl::detail {
 inline constexpr int kWidth = 8;
 
 /// 256 bytes (four cache lines). Lane i describes child i; an empty lane has an empty box and a
-/// zero layer mask so no query ever enters it.
+/// zero layer mask so no query ever enters it. Float boxes on purpose: 8-bit quantised boxes
+/// (128-byte nodes) were measured slower, their dequantisation sitting on the latency-bound
+/// chain of node loads (docs/benchmarks.md, "Node layout and build").
 struct alignas(64) WideNode {
     float bounds[6][kWidth];     ///< [min x, min y, min z, max x, max y, max z][lane]
     uint32_t child[kWidth];      ///< WideLeaf encoding when the top bits are non-zero, else the
