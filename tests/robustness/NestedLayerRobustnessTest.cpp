@@ -21,7 +21,7 @@ namespace {
 
 void measured(const std::string &line) { std::printf("[ measured ] %s\n", line.c_str()); }
 
-/// The view: two nested spheres of equal tessellation at 400 × 400, one ray per pixel,
+/// The view where the fault was seen: two nested spheres of equal tessellation at 400 × 400, one ray per pixel,
 /// at the origin and at 10⁷ sizes from it. Every pixel of the model shows the outer layer.
 TEST(RobustnessNestedLayers, EqualTessellationsNeverShowTheInnerLayerAt400x400) {
     for (const double translation : {0.0, 1e7})

@@ -92,7 +92,7 @@ int main(int argc, char **argv) {
                         s, t, cell.rays, cell.primaryWrong, cell.refractionWrong, cell.shadowWrong,
                         cell.reflectionWrong, cell.nonFinite, int(cell.required), int(cell.pass()), cell.hash);
         }
-    // Case 28 at the 400 × 400, then the pass map at 64 × 64 per cell.
+    // Case 28 at 400 × 400 (where it was seen), then the pass map at 64 × 64 per cell.
     auto printNested = [&](const NestedLayerConfig &config) {
         const NestedLayerCounts c = runNestedLayerCell(config, int(threads));
         allPassed &= c.pass();

@@ -74,8 +74,10 @@ struct RayContext {
     const RayQuery *query;
     bool hasClips;
 
-    RayContext(const Ray &r, const RayQuery &q)
-        : ray(r), tMin(q.tMin), tMax(q.tMax), layerMask(q.layerMask), query(&q),
+    RayContext(const Ray &r, const RayQuery &q) : RayContext(r, q, q.tMax) {}
+    /// The query with its range ending at `rangeEnd` instead of q.tMax (a shadow ray's own length).
+    RayContext(const Ray &r, const RayQuery &q, float rangeEnd)
+        : ray(r), tMin(q.tMin), tMax(rangeEnd), layerMask(q.layerMask), query(&q),
           hasClips(q.clipCount() > 0) {
 #if defined(__SSE2__)
         // One divps instead of three divss (same correctly rounded quotients per lane).

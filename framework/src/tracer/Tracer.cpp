@@ -289,8 +289,7 @@ struct PacketSetup {
 
     const RayContext &context(int i) {
         if (!((built >> i) & 1u)) {
-            new (&contexts[i].value) RayContext(rays[i], *query);
-            contexts[i].value.tMax = tMax[i];
+            new (&contexts[i].value) RayContext(rays[i], *query, tMax[i]);
             wrays[i] = new (&wrayStorage[i].value) WatertightRay(rays[i]);
             wray4[i] = new (&wray4s[i].value) detail::WatertightRay4(*wrays[i]);
             built |= 1u << i;
@@ -629,24 +628,13 @@ bool Tracer::closestHit(const Ray &ray, const RayQuery &query, Hit &hit) const {
     return d->closestHitWithContact(*this, ray, query, hit, Private::Oracle::Traversal);
 }
 
+bool Tracer::anyHit(const Ray &ray, const RayQuery &query) const { return anyHit(ray, query, query.tMax); }
+
 bool Tracer::anyHit(const Ray &ray, const RayQuery &query, float tMax) const {
     const float end = std::min(query.tMax, tMax);
+    if (!detail::isValidQuery(ray, query.tMin, end)) return false;
     if (!(d->contactDistance > 0.f) || !d->isLayered(query)) {
-        if (!detail::isValidQuery(ray, query.tMin, end)) return false;
-        RayContext c(ray, query);
-        c.tMax = end;
-        detail::NearestHit unused;
-        return d->testPlanes<true>(c, unused) || d->traverse<true>(c, unused);
-    }
-    RayQuery within = query;
-    within.tMax = end;
-    return anyHit(ray, within);
-}
-
-bool Tracer::anyHit(const Ray &ray, const RayQuery &query) const {
-    if (!detail::isValidQuery(ray, query)) return false;
-    if (!(d->contactDistance > 0.f) || !d->isLayered(query)) {
-        const RayContext c(ray, query);
+        const RayContext c(ray, query, end);
         detail::NearestHit unused;
         return d->testPlanes<true>(c, unused) || d->traverse<true>(c, unused);
     }
@@ -654,11 +642,13 @@ bool Tracer::anyHit(const Ray &ray, const RayQuery &query) const {
     // does not occlude (the facets of differently triangulated touching layers poke through each
     // other): the outermost layer occludes as always, the others only as a closest hit would
     // show them.
-    RayQuery outermost = query;
+    RayQuery within = query;
+    within.tMax = end;
+    RayQuery outermost = within;
     outermost.layerMask = layerBit(std::countr_zero(d->layers & query.layerMask));
     if (d->anyHitInRange(ray, outermost)) return true;
     Hit unused;
-    return d->closestHitWithContact(*this, ray, query, unused, Private::Oracle::Traversal);
+    return d->closestHitWithContact(*this, ray, within, unused, Private::Oracle::Traversal);
 }
 
 template <class Best, class MakeBest>

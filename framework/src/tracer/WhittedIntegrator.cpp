@@ -373,6 +373,14 @@ constexpr std::size_t kPacketLights = 8;
 
 } // namespace
 
+/// What radianceFromHits() found for one point and one light: its path (found once, used by the
+/// packet and then by the shading) and what the shadow ray answered.
+struct WhittedIntegrator::LightAnswer {
+    bool lit;     ///< lightPath() holds: the light reaches the point's lit side
+    LightPath path;
+    float passed; ///< lightPassing()'s answer, set where `lit`
+};
+
 // Inlined into traceFromHit() and radianceFromHits(): as calls, the split of the shading into
 // two halves cost the ray-by-ray path (every secondary ray) several per cent.
 [[gnu::always_inline]] inline bool
@@ -502,7 +510,7 @@ glm::vec3 WhittedIntegrator::shown(const ShadingPoint &p, const glm::vec3 &surfa
 }
 
 glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy &policy, const IntegratorPlan &plan,
-                                         RayCounters &counters, const float *shadowAnswers,
+                                         RayCounters &counters, const LightAnswer *answers,
                                          const RayQuery &shadowQuery) const {
     const Scene &scene = m_tracer.scene();
     const ShadingPolicy &shading = policy.shading;
@@ -512,8 +520,14 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy 
     glm::vec3 local = m.ambient * scene.ambientLight;
     for (std::size_t l = 0; l < scene.lights.size(); ++l) {
         const Light &light = scene.lights[l];
+        const LightAnswer *answer = answers && l < kPacketLights ? &answers[l] : nullptr;
         LightPath path;
-        if (!lightPath(p.si.position, p.ng, ns, light, path)) continue;
+        if (answer) {
+            if (!answer->lit) continue;
+            path = answer->path;
+        } else if (!lightPath(p.si.position, p.ng, ns, light, path)) {
+            continue;
+        }
 
         glm::vec3 transmittance(1.f);
         if (plan.shadows != ShadowStage::Off) {
@@ -522,10 +536,9 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy 
                 ++counters.skippedShadowRays;
             } else {
                 countRay(RayType::Shadow, counters);
-                passed = shadowAnswers && l < kPacketLights
-                             ? shadowAnswers[l]
-                             : lightPassing(shadowRayOf(p.si, p.ng, path.toLight), path.distance, shadowQuery,
-                                            plan.shadows);
+                passed = answer ? answer->passed
+                                : lightPassing(shadowRayOf(p.si, p.ng, path.toLight), path.distance, shadowQuery,
+                                               plan.shadows);
                 if (plan.shadows != plan.forcedShadows) ++counters.skippedTransparentWalks;
             }
             // The blocked share of the light is dimmed by the policy's strength and tint.
@@ -543,7 +556,7 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy 
 
 [[gnu::always_inline]] inline glm::vec3 WhittedIntegrator::shadeLit(const ShadingPoint &p, const RayPolicy &policy,
                                                                      const IntegratorPlan &plan, RayCounters &counters,
-                                                                     const float *shadowAnswers) const {
+                                                                     const LightAnswer *answers) const {
     const ShadingPolicy &shading = policy.shading;
     const PhongTerms &m = p.surface.phong;
     const glm::vec3 &d = p.d, &ng = p.ng, &ns = p.ns;
@@ -554,9 +567,9 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy 
         // A cap is lit as if the cut were real: its shadow rays skip what the primary clips remove.
         RayQuery cappedShadowQuery = policy.query(RayType::Shadow);
         for (const ClipVolume &clip : policy.query(p.type).clips()) cappedShadowQuery.tryAddClip(clip);
-        local = directLight(p, policy, plan, counters, shadowAnswers, cappedShadowQuery);
+        local = directLight(p, policy, plan, counters, answers, cappedShadowQuery);
     } else {
-        local = directLight(p, policy, plan, counters, shadowAnswers, policy.query(RayType::Shadow));
+        local = directLight(p, policy, plan, counters, answers, policy.query(RayType::Shadow));
     }
 
     const int maxDepth = std::min(shading.maxDepth, kDepthCeiling);
@@ -645,7 +658,7 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
         for (uint32_t rest = lit; rest; rest &= rest - 1)
             if (!points[size_t(std::countr_zero(rest))].cap) packeted |= rest & ~(rest - 1);
     const std::vector<Light> &lights = m_tracer.scene().lights;
-    std::array<std::array<float, kPacketLights>, Tracer::kPacketSize> passed;
+    std::array<std::array<LightAnswer, kPacketLights>, Tracer::kPacketSize> answers;
     for (std::size_t l = 0; packeted && l < std::min(lights.size(), kPacketLights); ++l) {
         std::array<Ray, Tracer::kPacketSize> rays;
         std::array<float, Tracer::kPacketSize> distances;
@@ -654,21 +667,22 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
         for (uint32_t rest = packeted; rest; rest &= rest - 1) {
             const int i = std::countr_zero(rest);
             const ShadingPoint &p = points[size_t(i)];
-            LightPath path;
-            if (!lightPath(p.si.position, p.ng, p.ns, lights[l], path)) continue;
-            rays[n] = shadowRayOf(p.si, p.ng, path.toLight);
-            distances[n] = path.distance;
+            LightAnswer &a = answers[size_t(i)][l];
+            a.lit = lightPath(p.si.position, p.ng, p.ns, lights[l], a.path);
+            if (!a.lit) continue;
+            rays[n] = shadowRayOf(p.si, p.ng, a.path.toLight);
+            distances[n] = a.path.distance;
             pointOf[n++] = i;
         }
         if (n == 0) continue;
         const uint32_t occluded =
             m_tracer.anyHits({rays.data(), n}, policy.query(RayType::Shadow), {distances.data(), n});
-        for (std::size_t j = 0; j < n; ++j) passed[size_t(pointOf[j])][l] = (occluded >> j) & 1u ? 0.f : 1.f;
+        for (std::size_t j = 0; j < n; ++j) answers[size_t(pointOf[j])][l].passed = (occluded >> j) & 1u ? 0.f : 1.f;
     }
     for (uint32_t rest = lit; rest; rest &= rest - 1) {
         const std::size_t i = size_t(std::countr_zero(rest));
         radiance[i] = finishSample(shadeLit(points[i], policy, plan, counters,
-                                            (packeted >> i) & 1u ? passed[i].data() : nullptr),
+                                            (packeted >> i) & 1u ? answers[i].data() : nullptr),
                                    policy, plan, counters);
     }
 }

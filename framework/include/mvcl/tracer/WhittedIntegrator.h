@@ -71,6 +71,7 @@ public:
 
 private:
     struct ShadingPoint;
+    struct LightAnswer;
 
     /// The colour stage and the non-finite check every sample ends with.
     glm::vec3 finishSample(glm::vec3 c, const RayPolicy &policy, const IntegratorPlan &plan,
@@ -88,15 +89,15 @@ private:
     bool prepareShading(const Ray &ray, RayType type, int depth, const Hit *closest, const RayPolicy &policy,
                         const IntegratorPlan &plan, RayCounters &counters, float travelled, ShadingPoint &point,
                         glm::vec3 &finished) const;
-    /// The rest of traceFromHit(): lights, shadows, reflection and refraction. `shadowAnswers`,
-    /// if not null, holds what lightPassing() would answer for each of the first lights whose
-    /// shadow ray the point casts (radianceFromHits traced them as packets).
+    /// The rest of traceFromHit(): lights, shadows, reflection and refraction. `answers`, if not
+    /// null, holds for each of the first lights its path to the point and what lightPassing()
+    /// would answer (radianceFromHits traced those shadow rays as packets).
     glm::vec3 shadeLit(const ShadingPoint &point, const RayPolicy &policy, const IntegratorPlan &plan,
-                       RayCounters &counters, const float *shadowAnswers) const;
-    /// Eq. 1's ambient and direct terms at the point, shadow rays under `shadowQuery` (answers
-    /// from `shadowAnswers` as in shadeLit()).
+                       RayCounters &counters, const LightAnswer *answers) const;
+    /// Eq. 1's ambient and direct terms at the point, shadow rays under `shadowQuery` (paths and
+    /// answers from `answers` as in shadeLit()).
     glm::vec3 directLight(const ShadingPoint &point, const RayPolicy &policy, const IntegratorPlan &plan,
-                          RayCounters &counters, const float *shadowAnswers, const RayQuery &shadowQuery) const;
+                          RayCounters &counters, const LightAnswer *answers, const RayQuery &shadowQuery) const;
     /// A surface colour as the point shows it: edge lines over it, blended over what lies behind.
     glm::vec3 shown(const ShadingPoint &point, const glm::vec3 &surfaceColor, const RayPolicy &policy,
                     RayCounters &counters) const;
