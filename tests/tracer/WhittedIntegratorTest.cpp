@@ -203,17 +203,19 @@ TEST(WhittedIntegrator, RadianceFromAKnownPrimaryHitIsRadiance) {
     }
 }
 
-// radianceFromHits() is what the renderer calls for a 4×4 block of primary rays: the shadow rays
-// of the block's hits toward each light go as one packet. Each value must be radiance()'s bit for
-// bit with the same rays counted: on models whose tree takes packets (Duck, 2CylinderEngine with
-// their default key and fill point lights) and on the default scene (one node: ray by ray),
-// under a plain policy, tinted half-strength shadows, a layer mask, and a capped clip (points on
-// a cap keep their own shadow query).
+// radianceFromHits() is what the renderer calls for a 4×4 block of primary rays: a stream whose
+// shadow rays go as packets per light and whose reflected and refracted rays form waves traced in
+// packets. Each value must be radiance()'s bit for bit with the same rays counted: on models whose
+// tree takes packets (Duck, 2CylinderEngine with their default key and fill point lights, the
+// mosquito in amber: refraction, transparent shadows) and on the default scene (one node: ray by
+// ray; a mirror, glass and a reflective floor), under a plain policy, tinted half-strength
+// shadows, a layer mask, a capped clip (points on a cap keep their own shadow query), translucent
+// layers with edge lines, and shallow trace depth.
 TEST(WhittedIntegrator, RadianceFromHitsOfABlockIsRadianceRayByRay) {
     const std::filesystem::path models = std::filesystem::path(MVCL_TEST_DATA_DIR) / "models";
     for (const std::string &source :
          {(models / "Duck" / "Duck.glb").string(), (models / "2CylinderEngine" / "2CylinderEngine.glb").string(),
-          std::string("builtin:cube-in-cube")}) {
+          (models / "MosquitoInAmber" / "MosquitoInAmber.glb").string(), std::string("builtin:cube-in-cube")}) {
         SCOPED_TRACE(source);
         const Scene scene = loadScene(source);
         ASSERT_FALSE(scene.lights.empty());
@@ -227,6 +229,9 @@ TEST(WhittedIntegrator, RadianceFromHitsOfABlockIsRadianceRayByRay) {
         ClipVolume cut = ClipVolume::halfSpace({0.f, 0.f, 1.f}, b.center().z, ClipVolume::Keep::Outside);
         cut.setCapStyle(ClipVolume::CapStyle::Solid);
         policies[3].query(RayType::Primary).addClip(cut);
+        policies.emplace_back().shading.layerOpacity[0] = 0.4f;
+        policies.back().shading.edges.mode = EdgeLineMode::Triangles;
+        policies.emplace_back().shading.maxDepth = 1;
         const glm::vec3 eye = b.center() + 1.2f * glm::length(b.extent()) * glm::normalize(glm::vec3(0.4f, 0.5f, 1.f));
         for (std::size_t k = 0; k < policies.size(); ++k) {
             SCOPED_TRACE(k);
@@ -254,7 +259,11 @@ TEST(WhittedIntegrator, RadianceFromHitsOfABlockIsRadianceRayByRay) {
                     }
                     ASSERT_EQ(counters.total(), expectedCounters.total());
                     ASSERT_EQ(counters.shadow, expectedCounters.shadow);
-                    ASSERT_EQ(counters.primary, uint64_t(Tracer::kPacketSize));
+                    ASSERT_EQ(counters.reflection, expectedCounters.reflection);
+                    ASSERT_EQ(counters.refraction, expectedCounters.refraction);
+                    // A translucent hit's ray goes on through the surface as a primary ray.
+                    ASSERT_EQ(counters.primary, expectedCounters.primary);
+                    ASSERT_GE(counters.primary, uint64_t(Tracer::kPacketSize));
                     shadowRays += counters.shadow;
                 }
             // The layer mask hides the whole of a one-layer model (Duck): nothing to light there.

@@ -307,7 +307,7 @@ glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, cons
 
 /// What traceFromHit() knows of the surface point a ray shows before its light loop: the hit (or
 /// the cap in front of it), the lit side's normals, the material's terms, and what lies behind a
-/// translucent primary hit. Made by prepareShading(), lit by shadeLit().
+/// translucent primary hit. Made by prepareShading(), lit by litColor().
 struct WhittedIntegrator::ShadingPoint {
     /// Leaves every member but `cap` to prepareShading(), which writes each one before it is
     /// read: the members' own zeroing, a few hundred bytes a ray, showed in the profile.
@@ -554,9 +554,22 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy 
     return local;
 }
 
-[[gnu::always_inline]] inline glm::vec3 WhittedIntegrator::shadeLit(const ShadingPoint &p, const RayPolicy &policy,
-                                                                     const IntegratorPlan &plan, RayCounters &counters,
-                                                                     const LightAnswer *answers) const {
+/// What a lit point still needs from its secondary rays: its own colour, and the reflected and
+/// refracted rays with the weights their radiance is added with. Made by litColor().
+struct WhittedIntegrator::SecondaryRays {
+    glm::vec3 color;         ///< local light · (1 − transparency) + emission
+    glm::vec3 reflectFactor; ///< reflection weight · tint, applied to the reflected radiance
+    float refractWeight;     ///< applied to the refracted radiance (0 under total internal reflection)
+    bool reflects;           ///< reflectRay is traced
+    bool refracts;           ///< refractRay is traced
+    Ray reflectRay;
+    Ray refractRay;
+};
+
+[[gnu::always_inline]] inline bool WhittedIntegrator::litColor(const ShadingPoint &p, const RayPolicy &policy,
+                                                               const IntegratorPlan &plan, RayCounters &counters,
+                                                               const LightAnswer *answers, SecondaryRays &next,
+                                                               glm::vec3 &finished) const {
     const ShadingPolicy &shading = policy.shading;
     const PhongTerms &m = p.surface.phong;
     const glm::vec3 &d = p.d, &ng = p.ng, &ns = p.ns;
@@ -576,19 +589,26 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy 
     const float reflectivity = shading.reflections ? m.reflectivity : 0.f;
     float reflectWeight = reflectivity;
     float refractWeight = shading.refractions ? p.surface.transparency : 0.f;
-    glm::vec3 color = local * (1.f - std::clamp(p.surface.transparency, 0.f, 1.f)) + p.surface.emission;
-    if (p.cap)
-        return shown(p, p.cap->style == ClipVolume::CapStyle::Hatched ? detail::hatched(color, si.position, m_hatchPeriod)
-                                                                       : color,
-                     policy, counters);
+    const glm::vec3 color = local * (1.f - std::clamp(p.surface.transparency, 0.f, 1.f)) + p.surface.emission;
+    if (p.cap) {
+        finished = shown(p, p.cap->style == ClipVolume::CapStyle::Hatched ? detail::hatched(color, si.position, m_hatchPeriod)
+                                                                          : color,
+                         policy, counters);
+        return false;
+    }
     if ((plan.secondaryRayTypes & rayTypeBit(p.type)) == 0) {
         ++counters.skippedSecondaryChecks;
-        return shown(p, color, policy, counters);
+        finished = shown(p, color, policy, counters);
+        return false;
     }
-    if (p.depth >= maxDepth || (reflectWeight <= 0.f && refractWeight <= 0.f)) return shown(p, color, policy, counters);
+    if (p.depth >= maxDepth || (reflectWeight <= 0.f && refractWeight <= 0.f)) {
+        finished = shown(p, color, policy, counters);
+        return false;
+    }
 
+    next.color = color;
+    next.refracts = false;
     const float cosI = -glm::dot(ns, d);
-    glm::vec3 refracted(0.f);
     if (refractWeight > 0.f) {
         const float ior = p.surface.ior;
         const float eta = p.entering ? 1.f / ior : ior; // n_from / n_to
@@ -603,23 +623,33 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy 
             reflectWeight += refractWeight * fresnel;
             refractWeight *= 1.f - fresnel;
             const glm::vec3 t = glm::normalize(eta * d + (eta * cosI - cosT) * ns);
-            Ray refractRay{offsetRayOrigin(si.position, si.positionError, ng, t), t};
-            refractRay.coneWidth = p.coneWidth;
-            refractRay.coneSpread = p.ray.coneSpread;
-            refracted = trace(refractRay, RayType::Refraction, p.depth + 1, policy, plan, counters);
+            next.refractRay = Ray{offsetRayOrigin(si.position, si.positionError, ng, t), t};
+            next.refractRay.coneWidth = p.coneWidth;
+            next.refractRay.coneSpread = p.ray.coneSpread;
+            next.refracts = true;
         }
     }
-    if (reflectWeight > 0.f) {
+    next.refractWeight = refractWeight;
+    next.reflects = reflectWeight > 0.f;
+    if (next.reflects) {
         const glm::vec3 r = d - 2.f * glm::dot(ns, d) * ns;
-        Ray reflectRay{offsetRayOrigin(si.position, si.positionError, ng, r), r};
-        reflectRay.coneWidth = p.coneWidth;
-        reflectRay.coneSpread = p.ray.coneSpread;
+        next.reflectRay = Ray{offsetRayOrigin(si.position, si.positionError, ng, r), r};
+        next.reflectRay.coneWidth = p.coneWidth;
+        next.reflectRay.coneSpread = p.ray.coneSpread;
         // Metals tint what they mirror; the Fresnel share of a transmissive surface stays white.
-        const glm::vec3 tint = glm::mix(glm::vec3(1.f), m.specularColor,
-                                        reflectWeight > 0.f ? std::clamp(reflectivity / reflectWeight, 0.f, 1.f) : 0.f);
-        color += reflectWeight * tint * trace(reflectRay, RayType::Reflection, p.depth + 1, policy, plan, counters);
+        const glm::vec3 tint = glm::mix(glm::vec3(1.f), m.specularColor, std::clamp(reflectivity / reflectWeight, 0.f, 1.f));
+        next.reflectFactor = reflectWeight * tint;
     }
-    return shown(p, color + refractWeight * refracted, policy, counters);
+    return true;
+}
+
+/// The colour of a point from its own colour and its secondary rays' radiance. The stream
+/// (WhittedStream.cpp) adds the same terms in the same order, so both give the same bits.
+inline glm::vec3 combineSecondary(const glm::vec3 &color, const glm::vec3 &reflectFactor, bool reflects,
+                                  const glm::vec3 &reflected, float refractWeight, const glm::vec3 &refracted) {
+    glm::vec3 sum = color;
+    if (reflects) sum += reflectFactor * reflected;
+    return sum + refractWeight * refracted;
 }
 
 glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int depth, const Hit *closest,
@@ -628,28 +658,50 @@ glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int dept
     ShadingPoint p;
     glm::vec3 finished;
     if (!prepareShading(ray, type, depth, closest, policy, plan, counters, travelled, p, finished)) return finished;
-    return shadeLit(p, policy, plan, counters, nullptr);
+    SecondaryRays next;
+    if (!litColor(p, policy, plan, counters, nullptr, next, finished)) return finished;
+    const glm::vec3 refracted =
+        next.refracts ? trace(next.refractRay, RayType::Refraction, p.depth + 1, policy, plan, counters) : glm::vec3(0.f);
+    const glm::vec3 reflected =
+        next.reflects ? trace(next.reflectRay, RayType::Reflection, p.depth + 1, policy, plan, counters) : glm::vec3(0.f);
+    return shown(p, combineSecondary(next.color, next.reflectFactor, next.reflects, reflected, next.refractWeight, refracted),
+                 policy, counters);
 }
 
-void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::span<const Hit> primaryHits,
-                                         uint32_t hitMask, const RayPolicy &policy, const IntegratorPlan &plan,
-                                         RayCounters &counters, std::span<glm::vec3> radiance) const {
-    const std::size_t count = primaryRays.size();
-    if (count > std::size_t(Tracer::kPacketSize) || primaryHits.size() < count || radiance.size() < count)
-        throw Error("integrator", "radianceFromHits takes at most " + std::to_string(Tracer::kPacketSize) +
-                                      " rays with as many hits and values, not " + std::to_string(count) + ", " +
-                                      std::to_string(primaryHits.size()) + " and " + std::to_string(radiance.size()));
-    std::array<ShadingPoint, Tracer::kPacketSize> points;
-    uint32_t lit = 0; // rays whose point goes on to the light loop
-    for (std::size_t i = 0; i < count; ++i) {
-        countRay(RayType::Primary, counters);
-        glm::vec3 finished;
-        if (prepareShading(primaryRays[i], RayType::Primary, 0, (hitMask >> i) & 1u ? &primaryHits[i] : nullptr, policy,
-                           plan, counters, 0.f, points[i], finished))
-            lit |= 1u << i;
-        else
-            radiance[i] = finishSample(finished, policy, plan, counters);
-    }
+/// Where a value of the stream goes once known: a primary sample (radiance[i]) or the reflected
+/// or refracted slot of a point waiting for its secondary rays.
+struct WhittedIntegrator::Destination {
+    int node;  ///< index into the waiting points, or −1 for a primary sample
+    int index; ///< the primary sample (node = −1), or 0 = reflected, 1 = refracted
+};
+
+/// A secondary ray of the stream: traced with the others of its kind in packets.
+struct WhittedIntegrator::StreamRay {
+    Ray ray;
+    int depth;
+    Destination to;
+};
+
+/// A point whose colour waits for its secondary rays' radiance (SecondaryRays, and what they
+/// brought back).
+struct WhittedIntegrator::WaitingPoint {
+    glm::vec3 color;
+    glm::vec3 reflectFactor;
+    float refractWeight;
+    bool reflects;
+    Destination to;
+    glm::vec3 secondary[2]; ///< reflected, refracted radiance (0 where not traced)
+};
+
+/// The stream's working memory, one per thread, reused block after block.
+struct WhittedIntegrator::StreamScratch {
+    std::vector<WaitingPoint> waiting;
+    std::vector<StreamRay> rays[2]; ///< reflection, refraction: the next waves
+};
+
+void WhittedIntegrator::shadeBatch(std::span<ShadingPoint> points, uint32_t lit, const Destination *to,
+                                   const RayPolicy &policy, const IntegratorPlan &plan, RayCounters &counters,
+                                   StreamScratch &scratch, std::span<glm::vec3> radiance) const {
     // Opaque occluders only (any-hit answers): the shadow rays of all points toward one light
     // are one packet, coherent where the points are neighbours. A point on a cap has its own
     // shadow query (the cut's clips added) and goes ray by ray, as do transparent walks.
@@ -681,9 +733,104 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
     }
     for (uint32_t rest = lit; rest; rest &= rest - 1) {
         const std::size_t i = size_t(std::countr_zero(rest));
-        radiance[i] = finishSample(shadeLit(points[i], policy, plan, counters,
-                                            (packeted >> i) & 1u ? answers[i].data() : nullptr),
-                                   policy, plan, counters);
+        const ShadingPoint &p = points[i];
+        SecondaryRays next;
+        glm::vec3 finished;
+        if (!litColor(p, policy, plan, counters, (packeted >> i) & 1u ? answers[i].data() : nullptr, next, finished)) {
+            deliver(to[i], finished, policy, plan, counters, scratch, radiance);
+            continue;
+        }
+        // The point waits for its secondary rays, which join the next waves.
+        const int node = int(scratch.waiting.size());
+        scratch.waiting.push_back({next.color, next.reflectFactor, next.refractWeight, next.reflects, to[i],
+                                   {glm::vec3(0.f), glm::vec3(0.f)}});
+        if (next.reflects) scratch.rays[0].push_back({next.reflectRay, p.depth + 1, {node, 0}});
+        if (next.refracts) scratch.rays[1].push_back({next.refractRay, p.depth + 1, {node, 1}});
+    }
+}
+
+void WhittedIntegrator::deliver(const Destination &to, const glm::vec3 &value, const RayPolicy &policy,
+                                const IntegratorPlan &plan, RayCounters &counters, StreamScratch &scratch,
+                                std::span<glm::vec3> radiance) const {
+    if (to.node >= 0)
+        scratch.waiting[size_t(to.node)].secondary[to.index] = value;
+    else
+        radiance[size_t(to.index)] = finishSample(value, policy, plan, counters);
+}
+
+void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::span<const Hit> primaryHits,
+                                         uint32_t hitMask, const RayPolicy &policy, const IntegratorPlan &plan,
+                                         RayCounters &counters, std::span<glm::vec3> radiance) const {
+    const std::size_t count = primaryRays.size();
+    if (count > std::size_t(Tracer::kPacketSize) || primaryHits.size() < count || radiance.size() < count)
+        throw Error("integrator", "radianceFromHits takes at most " + std::to_string(Tracer::kPacketSize) +
+                                      " rays with as many hits and values, not " + std::to_string(count) + ", " +
+                                      std::to_string(primaryHits.size()) + " and " + std::to_string(radiance.size()));
+    thread_local StreamScratch scratch;
+    scratch.waiting.clear();
+    scratch.rays[0].clear();
+    scratch.rays[1].clear();
+
+    // Wave 0: the primary points, kept to the end for shown() (edge lines, translucency).
+    std::array<ShadingPoint, Tracer::kPacketSize> primary;
+    std::array<Destination, Tracer::kPacketSize> to;
+    uint32_t lit = 0; // rays whose point goes on to the light loop
+    for (std::size_t i = 0; i < count; ++i) {
+        countRay(RayType::Primary, counters);
+        to[i] = {-1, int(i)};
+        glm::vec3 finished;
+        if (prepareShading(primaryRays[i], RayType::Primary, 0, (hitMask >> i) & 1u ? &primaryHits[i] : nullptr,
+                           policy, plan, counters, 0.f, primary[i], finished))
+            lit |= 1u << i;
+        else
+            radiance[i] = finishSample(finished, policy, plan, counters);
+    }
+    shadeBatch(primary, lit, to.data(), policy, plan, counters, scratch, radiance);
+
+    // Later waves: reflected and refracted rays, each kind in packets of up to kPacketSize under
+    // its own query; their points are lit as a batch and send their own secondary rays on.
+    std::array<ShadingPoint, Tracer::kPacketSize> batch;
+    std::size_t read[2] = {0, 0};
+    while (read[0] < scratch.rays[0].size() || read[1] < scratch.rays[1].size()) {
+        const int kind = read[0] < scratch.rays[0].size() ? 0 : 1;
+        const RayType type = kind == 0 ? RayType::Reflection : RayType::Refraction;
+        const std::size_t n = std::min(scratch.rays[kind].size() - read[kind], std::size_t(Tracer::kPacketSize));
+        std::array<Ray, Tracer::kPacketSize> rays;
+        std::array<Hit, Tracer::kPacketSize> hits;
+        std::array<Destination, Tracer::kPacketSize> batchTo;
+        std::array<int, Tracer::kPacketSize> depth;
+        for (std::size_t j = 0; j < n; ++j) {
+            const StreamRay &r = scratch.rays[kind][read[kind] + j];
+            rays[j] = r.ray;
+            batchTo[j] = r.to;
+            depth[j] = r.depth;
+        }
+        read[kind] += n;
+        const uint32_t found = m_tracer.closestHits({rays.data(), n}, policy.query(type), {hits.data(), n});
+        uint32_t batchLit = 0;
+        for (std::size_t j = 0; j < n; ++j) {
+            countRay(type, counters);
+            glm::vec3 finished;
+            if (prepareShading(rays[j], type, depth[j], (found >> j) & 1u ? &hits[j] : nullptr, policy, plan, counters,
+                               0.f, batch[j], finished))
+                batchLit |= 1u << j;
+            else
+                deliver(batchTo[j], finished, policy, plan, counters, scratch, radiance);
+        }
+        shadeBatch({batch.data(), n}, batchLit, batchTo.data(), policy, plan, counters, scratch, radiance);
+    }
+
+    // Every waiting point was made after the point it reports to, so one pass from the last to
+    // the first finds each point's secondary radiance complete.
+    for (std::size_t n = scratch.waiting.size(); n-- > 0;) {
+        const WaitingPoint &w = scratch.waiting[n];
+        const glm::vec3 value = combineSecondary(w.color, w.reflectFactor, w.reflects, w.secondary[0], w.refractWeight,
+                                                 w.secondary[1]);
+        if (w.to.node >= 0)
+            scratch.waiting[size_t(w.to.node)].secondary[w.to.index] = value;
+        else
+            radiance[size_t(w.to.index)] =
+                finishSample(shown(primary[size_t(w.to.index)], value, policy, counters), policy, plan, counters);
     }
 }
 

@@ -60,10 +60,12 @@ public:
                               const IntegratorPlan &plan, RayCounters &counters) const;
 
     /// radianceFromHit() of up to Tracer::kPacketSize primary rays under one policy at once
-    /// (primaryHits[i] is ray i's hit where bit i of hitMask is set): the shadow rays of all their
-    /// hits toward each light are traced as one packet (Tracer::anyHits with per-ray ranges)
-    /// where occluders are opaque. radiance[i] is the value of radianceFromHit() for ray i, bit
-    /// for bit, and the same rays are counted. Throws mvcl::Error("integrator", ...) for more than
+    /// (primaryHits[i] is ray i's hit where bit i of hitMask is set), as a stream: the block's
+    /// points are shaded as a batch, the shadow rays of a batch toward each light go as one packet
+    /// (Tracer::anyHits with per-ray ranges) where occluders are opaque, and the reflected and
+    /// refracted rays of all points form the next waves, traced in packets of their kind
+    /// (Tracer::closestHits) down to the trace depth. radiance[i] is the value of
+    /// radianceFromHit() for ray i, bit for bit, and the same rays are counted. Throws mvcl::Error("integrator", ...) for more than
     /// Tracer::kPacketSize rays or fewer hits or values than rays.
     void radianceFromHits(std::span<const Ray> primaryRays, std::span<const Hit> primaryHits, uint32_t hitMask,
                           const RayPolicy &policy, const IntegratorPlan &plan, RayCounters &counters,
@@ -72,6 +74,11 @@ public:
 private:
     struct ShadingPoint;
     struct LightAnswer;
+    struct SecondaryRays;
+    struct Destination;
+    struct StreamRay;
+    struct WaitingPoint;
+    struct StreamScratch;
 
     /// The colour stage and the non-finite check every sample ends with.
     glm::vec3 finishSample(glm::vec3 c, const RayPolicy &policy, const IntegratorPlan &plan,
@@ -89,13 +96,25 @@ private:
     bool prepareShading(const Ray &ray, RayType type, int depth, const Hit *closest, const RayPolicy &policy,
                         const IntegratorPlan &plan, RayCounters &counters, float travelled, ShadingPoint &point,
                         glm::vec3 &finished) const;
-    /// The rest of traceFromHit(): lights, shadows, reflection and refraction. `answers`, if not
-    /// null, holds for each of the first lights its path to the point and what lightPassing()
-    /// would answer (radianceFromHits traced those shadow rays as packets).
-    glm::vec3 shadeLit(const ShadingPoint &point, const RayPolicy &policy, const IntegratorPlan &plan,
-                       RayCounters &counters, const LightAnswer *answers) const;
+    /// The rest of traceFromHit() up to its secondary rays: lights and shadows. Returns false with
+    /// the final colour in `finished`, or true with the reflected and refracted rays to trace in
+    /// `next`. `answers`, if not null, holds for each of the first lights its path to the point
+    /// and what lightPassing() would answer (shadeBatch() traced those shadow rays as packets).
+    bool litColor(const ShadingPoint &point, const RayPolicy &policy, const IntegratorPlan &plan,
+                  RayCounters &counters, const LightAnswer *answers, SecondaryRays &next, glm::vec3 &finished) const;
+    /// The stream's step for up to Tracer::kPacketSize prepared points (bit i of `lit`: points[i]
+    /// goes on to the light loop): their shadow rays toward each light as packets, then litColor();
+    /// a finished colour goes to to[i], a point with secondary rays waits in `scratch` and its
+    /// rays join the next waves.
+    void shadeBatch(std::span<ShadingPoint> points, uint32_t lit, const Destination *to, const RayPolicy &policy,
+                    const IntegratorPlan &plan, RayCounters &counters, StreamScratch &scratch,
+                    std::span<glm::vec3> radiance) const;
+    /// Hands a finished value to where it goes: a waiting point's slot, or a primary sample
+    /// (through finishSample()).
+    void deliver(const Destination &to, const glm::vec3 &value, const RayPolicy &policy, const IntegratorPlan &plan,
+                 RayCounters &counters, StreamScratch &scratch, std::span<glm::vec3> radiance) const;
     /// Eq. 1's ambient and direct terms at the point, shadow rays under `shadowQuery` (paths and
-    /// answers from `answers` as in shadeLit()).
+    /// answers from `answers` as in litColor()).
     glm::vec3 directLight(const ShadingPoint &point, const RayPolicy &policy, const IntegratorPlan &plan,
                           RayCounters &counters, const LightAnswer *answers, const RayQuery &shadowQuery) const;
     /// A surface colour as the point shows it: edge lines over it, blended over what lies behind.
