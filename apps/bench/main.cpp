@@ -10,12 +10,14 @@
 //   (exit 2 for bad arguments, 1 when the model does not load)
 //   mvcl-bench convergence ...             (error against run time: ConvergenceBench.cpp)
 //   mvcl-bench cast ...                    (identical primary rays for other tracers: CastBench.cpp)
+//   mvcl-bench frame ...                   (a frame against its own rays unshaded: FrameBench.cpp)
 
 #include "CommandLineValues.h"
 #include "AlternatingRuns.h"
 #include "BenchSupport.h"
 #include "CastBench.h"
 #include "ConvergenceBench.h"
+#include "FrameBench.h"
 
 #include <mvcl/core/WorkerPool.h>
 #include <mvcl/io/SceneLoader.h>
@@ -154,6 +156,7 @@ void printRow(const char *what, double ours, double embree, const char *unit, bo
 int main(int argc, char **argv) {
     if (argc > 1 && std::string(argv[1]) == "convergence") return mvcl::bench::runConvergenceBench(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "cast") return mvcl::bench::runCastBench(argc - 1, argv + 1);
+    if (argc > 1 && std::string(argv[1]) == "frame") return mvcl::bench::runFrameBench(argc - 1, argv + 1);
     std::optional<Options> options;
     try {
         options = parseOptions(argc, argv);

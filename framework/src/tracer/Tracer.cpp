@@ -15,6 +15,7 @@
 #include <mvcl/core/FloatBits.h>
 #include <mvcl/core/WorkerPool.h>
 #include <mvcl/model/Scene.h>
+#include <mvcl/tracer/TracerQueryLog.h>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -439,6 +440,12 @@ struct Tracer::Private {
     static constexpr int kMaxContactSkips = 16;
     bool closestHitWithContact(const Tracer &tracer, const Ray &ray, const RayQuery &query, Hit &hit,
                                Oracle oracle) const;
+    /// Tracer::closestHit() and anyHit() without the query log: what their packet forms call
+    /// ray by ray (those calls are logged once, as packets).
+    bool closestHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, Hit &hit) const;
+    bool anyHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, float tMax) const;
+    /// Tracer::setQueryLog(): where the public queries are recorded, if anywhere.
+    std::atomic<TracerQueryLog *> queryLog{nullptr};
 };
 
 template <bool AnyHit, class Best>
@@ -613,30 +620,40 @@ bool Tracer::Private::closestHitWithContact(const Tracer &tracer, const Ray &ray
 }
 
 bool Tracer::closestHit(const Ray &ray, const RayQuery &query, Hit &hit) const {
+    if (TracerQueryLog *log = d->queryLog.load(std::memory_order_relaxed)) log->recordClosestHit(ray, query);
+    return d->closestHitQuery(*this, ray, query, hit);
+}
+
+bool Tracer::Private::closestHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, Hit &hit) const {
     if (!detail::isValidQuery(ray, query)) return false;
-    if (!d->isLayered(query)) {
+    if (!isLayered(query)) {
         // One layer: the plain nearest hit, the code and the cost of before layer priority.
         const RayContext c(ray, query);
         detail::NearestHit best;
-        return d->closestHit(c, best, hit);
+        return closestHit(c, best, hit);
     }
-    if (!(d->contactDistance > 0.f)) {
+    if (!(contactDistance > 0.f)) {
         const RayContext c(ray, query);
         detail::LayerPriorityHit best(0.f);
-        return d->closestHit(c, best, hit);
+        return closestHit(c, best, hit);
     }
-    return d->closestHitWithContact(*this, ray, query, hit, Private::Oracle::Traversal);
+    return closestHitWithContact(tracer, ray, query, hit, Oracle::Traversal);
 }
 
 bool Tracer::anyHit(const Ray &ray, const RayQuery &query) const { return anyHit(ray, query, query.tMax); }
 
 bool Tracer::anyHit(const Ray &ray, const RayQuery &query, float tMax) const {
+    if (TracerQueryLog *log = d->queryLog.load(std::memory_order_relaxed)) log->recordAnyHit(ray, query, tMax);
+    return d->anyHitQuery(*this, ray, query, tMax);
+}
+
+bool Tracer::Private::anyHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, float tMax) const {
     const float end = std::min(query.tMax, tMax);
     if (!detail::isValidQuery(ray, query.tMin, end)) return false;
-    if (!(d->contactDistance > 0.f) || !d->isLayered(query)) {
+    if (!(contactDistance > 0.f) || !isLayered(query)) {
         const RayContext c(ray, query, end);
         detail::NearestHit unused;
-        return d->testPlanes<true>(c, unused) || d->traverse<true>(c, unused);
+        return testPlanes<true>(c, unused) || traverse<true>(c, unused);
     }
     // With a contact tolerance an inner layer's surface within the tolerance of an outer layer's
     // does not occlude (the facets of differently triangulated touching layers poke through each
@@ -645,10 +662,10 @@ bool Tracer::anyHit(const Ray &ray, const RayQuery &query, float tMax) const {
     RayQuery within = query;
     within.tMax = end;
     RayQuery outermost = within;
-    outermost.layerMask = layerBit(std::countr_zero(d->layers & query.layerMask));
-    if (d->anyHitInRange(ray, outermost)) return true;
+    outermost.layerMask = layerBit(std::countr_zero(layers & query.layerMask));
+    if (anyHitInRange(ray, outermost)) return true;
     Hit unused;
-    return d->closestHitWithContact(*this, ray, within, unused, Private::Oracle::Traversal);
+    return closestHitWithContact(tracer, ray, within, unused, Oracle::Traversal);
 }
 
 template <class Best, class MakeBest>
@@ -680,12 +697,13 @@ void checkPacketSize(std::size_t rays, std::size_t hits) {
 
 uint32_t Tracer::closestHits(std::span<const Ray> rays, const RayQuery &query, std::span<Hit> hits) const {
     checkPacketSize(rays.size(), hits.size());
+    if (TracerQueryLog *log = d->queryLog.load(std::memory_order_relaxed)) log->recordClosestHits(rays, query);
     const bool layered = d->isLayered(query);
     if (!d->packetsPay() || (layered && d->contactDistance > 0.f)) {
         // The contact tolerance re-queries per ray (closestHitWithContact): ray by ray.
         uint32_t result = 0;
         for (std::size_t i = 0; i < rays.size(); ++i)
-            if (closestHit(rays[i], query, hits[i])) result |= 1u << i;
+            if (d->closestHitQuery(*this, rays[i], query, hits[i])) result |= 1u << i;
         return result;
     }
     if (layered)
@@ -696,6 +714,7 @@ uint32_t Tracer::closestHits(std::span<const Ray> rays, const RayQuery &query, s
 
 uint32_t Tracer::anyHits(std::span<const Ray> rays, const RayQuery &query) const {
     checkPacketSize(rays.size(), rays.size());
+    if (TracerQueryLog *log = d->queryLog.load(std::memory_order_relaxed)) log->recordAnyHits(rays, query, {});
     return d->anyHitsInPacket(*this, rays, query, nullptr);
 }
 
@@ -704,6 +723,8 @@ uint32_t Tracer::anyHits(std::span<const Ray> rays, const RayQuery &query, std::
     if (tMax.size() < rays.size())
         throw Error("tracer", "a packet query of " + std::to_string(rays.size()) + " rays needs as many ranges, not " +
                                   std::to_string(tMax.size()));
+    if (TracerQueryLog *log = d->queryLog.load(std::memory_order_relaxed))
+        log->recordAnyHits(rays, query, tMax.first(rays.size()));
     return d->anyHitsInPacket(*this, rays, query, tMax.data());
 }
 
@@ -712,7 +733,7 @@ uint32_t Tracer::Private::anyHitsInPacket(const Tracer &tracer, std::span<const 
     if (!packetsPay() || (contactDistance > 0.f && isLayered(query))) {
         uint32_t result = 0;
         for (std::size_t i = 0; i < rays.size(); ++i)
-            if (tMax ? tracer.anyHit(rays[i], query, tMax[i]) : tracer.anyHit(rays[i], query)) result |= 1u << i;
+            if (anyHitQuery(tracer, rays[i], query, tMax ? tMax[i] : query.tMax)) result |= 1u << i;
         return result;
     }
     PacketSetup s(rays, query, tMax);
@@ -773,5 +794,7 @@ bool Tracer::Private::closestHitBruteForce(const RayContext &c, Best &best, Hit 
 const Scene &Tracer::scene() const { return d->scene; }
 
 const TracerBuildStats &Tracer::buildStats() const { return d->stats; }
+
+void Tracer::setQueryLog(TracerQueryLog *log) { d->queryLog.store(log); }
 
 } // namespace mvcl

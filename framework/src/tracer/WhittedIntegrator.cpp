@@ -335,11 +335,13 @@ namespace {
 
 /// How a light reaches a surface point: unit direction toward it, distance (∞ for directional
 /// lights), attenuation and the cosine at the shading normal.
+/// Left uninitialised: lightPath() writes every member it answers true for, and a batch's
+/// answers (16 points × 8 lights) were zeroed at every step before.
 struct LightPath {
-    glm::vec3 toLight{0.f};
-    float distance = 0.f;
-    float attenuation = 1.f;
-    float nDotL = 0.f;
+    glm::vec3 toLight;
+    float distance;
+    float attenuation;
+    float nDotL;
 };
 
 /// The path from the point at `position` (lit side normals ng, ns) to `light`; false where the

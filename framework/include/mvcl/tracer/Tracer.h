@@ -20,6 +20,7 @@
 namespace mvcl {
 
 struct Scene;
+class TracerQueryLog;
 
 struct TracerSettings {
     /// Leaves hold at most this many primitives.
@@ -84,6 +85,12 @@ public:
 
     const Scene &scene() const;
     const TracerBuildStats &buildStats() const;
+
+    /// While `log` is set (not null), every closestHit, anyHit, closestHits and anyHits call is
+    /// appended to it (a packet as one call), so that a benchmark can trace a frame's rays again
+    /// without shading. For measurements: recording takes a lock per call. Set it while no query
+    /// runs; the log must outlive its use. Null (the default) records nothing.
+    void setQueryLog(TracerQueryLog *log);
 
 private:
     struct MVCL_HIDDEN Private;
