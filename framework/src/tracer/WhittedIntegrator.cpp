@@ -393,6 +393,17 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
     const ShadingPolicy &shading = policy.shading;
     const RayQuery &query = policy.query(type);
     const bool isPrimary = type == RayType::Primary;
+    // A miss shows the background (or, under outlines, the background next to an edge) unless a
+    // capped clip puts a cap on its way: most rays of a model's frame end here, before any of the
+    // point's set-up.
+    const bool mayCap = isPrimary && detail::hasCappedClip(query);
+    if (!closest && !mayCap) {
+        finished = !isPrimary || shading.edges.mode != EdgeLineMode::Outlines
+                       ? scene.background
+                       : glm::mix(scene.background, shading.edges.color,
+                                  outlineCoverage(ray, query, nullptr, shading.edges, counters));
+        return false;
+    }
     p.ray = ray;
     p.type = type;
     p.depth = depth;
@@ -408,7 +419,7 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
     const bool found = closest && skipCutOutHits(ray, query, hit);
     if (!found) hit = Hit{};
     SurfaceInteraction &si = p.si;
-    if (isPrimary && detail::hasCappedClip(query)) {
+    if (mayCap) {
         // The run of accepted points that holds the hit, or (no hit at all: a slab through a
         // solid) the first run, begins on a capped surface: is that point inside a solid?
         cap = found ? detail::clipCapBefore(ray, query, hit.t) : detail::firstCappedRunStart(ray, query);
@@ -776,9 +787,24 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
     // Wave 0: the primary points, kept to the end for shown() (edge lines, translucency).
     std::array<ShadingPoint, Tracer::kPacketSize> primary;
     std::array<Destination, Tracer::kPacketSize> to;
+    // A primary ray that missed, with no cap or outline to draw, shows the background through
+    // the colour stage: one value for all of them (most rays of a model's frame), computed once
+    // with the counts it adds to each.
+    const uint32_t missed = ~hitMask & ((1u << count) - 1u); // count ≤ kPacketSize < 32
+    const bool plainMisses = missed && policy.shading.edges.mode != EdgeLineMode::Outlines &&
+                             !detail::hasCappedClip(policy.query(RayType::Primary));
+    RayCounters missCounts;
+    const glm::vec3 missValue =
+        plainMisses ? finishSample(m_tracer.scene().background, policy, plan, missCounts) : glm::vec3(0.f);
     uint32_t lit = 0; // rays whose point goes on to the light loop
     for (std::size_t i = 0; i < count; ++i) {
         countRay(RayType::Primary, counters);
+        if (plainMisses && ((missed >> i) & 1u)) {
+            radiance[i] = missValue;
+            counters.skippedColorMaps += missCounts.skippedColorMaps;
+            counters.nonFiniteSamples += missCounts.nonFiniteSamples;
+            continue;
+        }
         to[i] = {-1, int(i)};
         glm::vec3 finished;
         if (prepareShading(primaryRays[i], RayType::Primary, 0, (hitMask >> i) & 1u ? &primaryHits[i] : nullptr,

@@ -67,15 +67,4 @@ void Camera::update() {
     m_tanHalfFov = std::tan(glm::radians(std::clamp(m_verticalFovDegrees, 1e-3f, 179.f)) * 0.5f);
 }
 
-Ray Camera::generateRay(float x, float y, int width, int height) const {
-    const float aspect = float(width) / float(height);
-    const float sx = (2.f * x / float(width) - 1.f) * m_tanHalfFov * aspect;
-    const float sy = (1.f - 2.f * y / float(height)) * m_tanHalfFov;
-    const glm::vec3 dir = m_sceneFromCamera * glm::vec3(sx, sy, -1.f);
-    Ray ray{m_eye, glm::normalize(dir)};
-    // One pixel's angle: what a texture lookup at distance t must cover (ray cones).
-    ray.coneSpread = 2.f * m_tanHalfFov / float(height);
-    return ray;
-}
-
 } // namespace mvcl

@@ -126,10 +126,18 @@ void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &sam
 void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t *endSample,
                                   PixelSamples *samples) {
     const int side = x1 - x0, count = side * (y1 - y0);
+    // Pixel i of the block, row by row (a table, not i / side and i % side: two integer
+    // divisions per pixel and loop showed in the profile).
+    std::array<int, kBlockSide * kBlockSide> xOf, yOf;
+    for (int y = y0, i = 0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x, ++i) {
+            xOf[size_t(i)] = x;
+            yOf[size_t(i)] = y;
+        }
     // The block's one policy, if every pixel has exactly one term and it is the same.
     int shared = -1;
     for (int i = 0; i < count; ++i) {
-        const std::span<const PolicyTerm> terms = m_map.terms(x0 + i % side, y0 + i / side);
+        const std::span<const PolicyTerm> terms = m_map.terms(xOf[size_t(i)], yOf[size_t(i)]);
         if (terms.size() != 1 || (shared >= 0 && terms[0].policy != shared)) {
             shared = -1;
             break;
@@ -137,7 +145,7 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
         shared = terms[0].policy;
     }
     if (shared < 0 || count < 2) {
-        for (int i = 0; i < count; ++i) addSamples(x0 + i % side, y0 + i / side, endSample[i], samples[i]);
+        for (int i = 0; i < count; ++i) addSamples(xOf[size_t(i)], yOf[size_t(i)], endSample[i], samples[i]);
         return;
     }
     const PixelPolicy &policy = m_map.policy(uint16_t(shared));
@@ -162,10 +170,17 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
         int lanes = 0;
         for (int i = 0; i < count; ++i) {
             if (k < samples[i].count || k >= endSample[i]) continue;
-            const int x = x0 + i % side, y = y0 + i / side;
+            const int x = xOf[size_t(i)], y = yOf[size_t(i)];
             const glm::vec2 p = policy.samplePosition(glm::vec2{float(x), float(y)} + sampleOffset(x, y, k, m_seed),
                                                       width, height);
-            rays[size_t(lanes)] = m_camera.generateRay(p.x, p.y, width, height);
+            // Member by member: a whole-struct copy of the returned ray read back 16-byte halves
+            // of what was just written 4 and 8 bytes at a time (a store-forwarding stall a ray).
+            const Ray ray = m_camera.generateRay(p.x, p.y, width, height);
+            Ray &lane = rays[size_t(lanes)];
+            lane.origin = ray.origin;
+            lane.direction = ray.direction;
+            lane.coneWidth = ray.coneWidth;
+            lane.coneSpread = ray.coneSpread;
             pixelOf[size_t(lanes++)] = i;
         }
         const uint32_t found = tracer.closestHits({rays.data(), size_t(lanes)}, query, {hits.data(), size_t(lanes)});

@@ -131,6 +131,10 @@ float RenderSession::Private::priorityOf(int x, int y) const {
     if (count >= samplesWanted()) return 0.f;
     if (settings.sampling != SamplingMode::Adaptive || settings.targetError <= 0.f) return INFINITY;
     if (count < uint32_t(settings.minSamplesPerPixel)) return INFINITY;
+    return errorPriority(x, y, count);
+}
+
+float RenderSession::Private::errorPriority(int x, int y, uint32_t count) const {
     // Dilated: a pixel next to one whose estimate is above the target keeps sampling, so that
     // an edge whose pixels happened to agree so far is not left behind.
     float worst = 0.f;
@@ -168,6 +172,13 @@ void RenderSession::Private::updateActiveTiles(const std::vector<int> &tiles) {
 void RenderSession::Private::summariseTile(int tile) {
     const int w = width();
     const PixelRect r = tileRect(tile);
+    // priorityOf() with its cheap answers inline: every pixel of every traced tile comes here.
+    const uint32_t wanted = samplesWanted();
+    const bool byError = settings.sampling == SamplingMode::Adaptive && settings.targetError > 0.f;
+    const uint32_t minimum = uint32_t(settings.minSamplesPerPixel);
+    const auto priorityAt = [&](int x, int y, uint32_t count) {
+        return count >= wanted ? 0.f : !byError || count < minimum ? INFINITY : errorPriority(x, y, count);
+    };
     TileSummary summary;
     summary.minCount = kNoActivePixel;
     summary.interiorFewestUrgent = kNoActivePixel;
@@ -186,7 +197,7 @@ void RenderSession::Private::summariseTile(int tile) {
                 ++summary.withError;
             }
             if (borderRow || x == r.x0 || x == r.x1 - 1) continue;
-            const float p = priority[i] = priorityOf(x, y);
+            const float p = priority[i] = priorityAt(x, y, count);
             if (p > 0.f) ++summary.interiorActive;
             if (p == INFINITY) summary.interiorFewestUrgent = std::min(summary.interiorFewestUrgent, count);
             else summary.interiorTopPriority = std::max(summary.interiorTopPriority, p);

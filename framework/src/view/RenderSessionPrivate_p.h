@@ -155,6 +155,9 @@ struct RenderSession::Private {
     void restartPixels(const PixelRect &area, const std::vector<uint8_t> *only);
     uint32_t samplesWanted() const;
     float priorityOf(int x, int y) const;
+    /// priorityOf() of a pixel with `count` samples, fewer than wanted and at least the
+    /// adaptive minimum: its neighbourhood's worst error against the target.
+    float errorPriority(int x, int y, uint32_t count) const;
     void updateActive(const PixelRect &area);
     void updateActiveTiles(const std::vector<int> &tiles);
     void summariseTile(int tile);

@@ -9,6 +9,7 @@
 #include <mvcl/model/CameraDesc.h>
 #include <mvcl/tracer/Ray.h>
 
+#include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
@@ -35,7 +36,16 @@ public:
     float verticalFovDegrees() const { return m_verticalFovDegrees; }
 
     /// Ray through continuous raster position (x, y), (0,0) = top-left corner of the image.
-    Ray generateRay(float x, float y, int width, int height) const;
+    Ray generateRay(float x, float y, int width, int height) const {
+        const float aspect = float(width) / float(height);
+        const float sx = (2.f * x / float(width) - 1.f) * m_tanHalfFov * aspect;
+        const float sy = (1.f - 2.f * y / float(height)) * m_tanHalfFov;
+        const glm::vec3 dir = m_sceneFromCamera * glm::vec3(sx, sy, -1.f);
+        Ray ray{m_eye, glm::normalize(dir)};
+        // One pixel's angle: what a texture lookup at distance t must cover (ray cones).
+        ray.coneSpread = 2.f * m_tanHalfFov / float(height);
+        return ray;
+    }
 
     /// Columns: right, up, backward (−forward) in scene space, i.e. the rotation from camera
     /// space to scene space (the camera lives in scene space, like the tracer).
