@@ -53,9 +53,10 @@ const char *kPovFooter =
     "= bounces + 1, adc_bailout 0, assumed_gamma 1. Not converted: textures (factors only) and alpha\n"
     "masks; the file's header comment lists these and whatever else it approximates.\n"
     "Prints on stdout the mvcl-render camera options of the same view (--eye --target --up --fov,\n"
-    "world units), and a summary on stderr. Render both with:\n"
-    "  povray +IFILE.pov +WW +HH -A -J0 +FN -D -P File_Gamma=sRGB\n"
-    "  mvcl-render SCENE --size WxH --spp 1 $(mvcl-bench pov SCENE --size WxH -o FILE.pov)";
+    "world units), and a summary on stderr. Both renderers, one ray per pixel centre, at 800x600:\n"
+    "  mvcl-render SCENE --size 800x600 --spp 1 $(mvcl-bench pov SCENE --size 800x600 -o scene.pov)\n"
+    "  povray +Iscene.pov +W800 +H600 -A -J0 +FN -D -P File_Gamma=sRGB\n"
+    "scripts/frame-vs-povray.sh times both on three scenes (docs/benchmarks.md).";
 
 /// The shortest text that reads back as the same float (what mvcl-render's parser reads).
 std::string shortest(float v) {

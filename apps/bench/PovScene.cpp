@@ -235,6 +235,12 @@ PovSceneSummary writePovScene(std::ostream &out, const Scene &scene, const Camer
     }
     for (const TriangleMesh &m : scene.meshes)
         transparentMesh = transparentMesh || (!m.indices.empty() && povMaterials[materialOf(m.material)].fresnel);
+    if (std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const TriangleMesh &m) {
+            return !m.indices.empty() && m.normals.size() == m.positions.size();
+        }))
+        summary.notes.push_back("vertex normals: where an interpolated normal faces away from the eye (at silhouettes) "
+                                "POV turns it toward the eye, we keep it on the triangle's side (or take the "
+                                "triangle's normal), so a few silhouette pixels are lit differently");
     if (transparentMesh)
         summary.notes.push_back("a transparent mesh: we tell entering from leaving by the mesh's closure and "
                                 "normals, POV by the interiors a ray is in");
@@ -262,13 +268,13 @@ PovSceneSummary writePovScene(std::ostream &out, const Scene &scene, const Camer
     w.append("// World space, the file's units (our scene space is world - " + vec(origin) + ").\n");
     w.append("// Not converted: textures (every material is its factors only) and alpha masks (MASK materials\n"
              "// render opaque here).\n");
-    w.append("// Approximate everywhere: Fresnel (ours Schlick's, POV the exact formula) and the split of\n"
-             "// transmitted light under conserve_energy; total internal reflection (we move the transmitted\n"
-             "// weight to the mirror ray, POV weights it its own way).\n");
+    w.append("// Approximate wherever light goes through a surface: Fresnel (ours Schlick's, POV the exact\n"
+             "// formula); the refracted share (ours T*(1-F), POV's conserve_energy T*(1-R*S-T*F)); total\n"
+             "// internal reflection (we mirror with weight R+T, POV at full weight).\n");
     if (summary.notes.empty()) {
         w.append("// Nothing else in this scene is approximated.\n");
     } else {
-        w.append("// Approximated in this scene:\n");
+        w.append("// Differs in this scene:\n");
         for (const std::string &note : summary.notes) w.append("//   " + note + "\n");
     }
     w.append("// Mapping (our Phong/Whitted term -> POV): A*ambientLight -> pigment C times finish ambient\n"

@@ -24,7 +24,10 @@
 /// Where no exact counterpart exists the file says so in its header comment: textures and alpha
 /// masks (never converted: factors only, MASK materials come out opaque), a metal's tinted
 /// highlight (POV's are white), ambient or emission in a colour channel whose pigment is zero,
-/// point lights with distance attenuation (folded in at the scene's centre).
+/// point lights whose attenuation POV's fade cannot express, and what differs by design: POV's
+/// exact Fresnel against our Schlick, its conserve_energy (refracted T·(1 − R·S − T·F), ours
+/// T·(1 − F)), total internal reflection (POV mirrors at full weight, we with R + T), and vertex
+/// normals that face away from the eye (POV turns them toward it, we keep the triangle's side).
 
 #include <mvcl/model/Material.h>
 #include <mvcl/model/Scene.h>
