@@ -238,9 +238,10 @@ PovSceneSummary writePovScene(std::ostream &out, const Scene &scene, const Camer
     if (std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const TriangleMesh &m) {
             return !m.indices.empty() && m.normals.size() == m.positions.size();
         }))
-        summary.notes.push_back("vertex normals: where an interpolated normal faces away from the eye (at silhouettes) "
-                                "POV turns it toward the eye, we keep it on the triangle's side (or take the "
-                                "triangle's normal), so a few silhouette pixels are lit differently");
+        summary.notes.push_back("vertex normals: where an interpolated normal and its triangle disagree, POV turns "
+                                "the normal toward the eye and lights by it alone, we keep it on the triangle's side "
+                                "(or take the triangle's normal) and light only where both face the light, so a few "
+                                "pixels at silhouettes and terminators are lit differently");
     if (transparentMesh)
         summary.notes.push_back("a transparent mesh: we tell entering from leaving by the mesh's closure and "
                                 "normals, POV by the interiors a ray is in");

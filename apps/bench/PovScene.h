@@ -27,7 +27,8 @@
 /// point lights whose attenuation POV's fade cannot express, and what differs by design: POV's
 /// exact Fresnel against our Schlick, its conserve_energy (refracted T·(1 − R·S − T·F), ours
 /// T·(1 − F)), total internal reflection (POV mirrors at full weight, we with R + T), and vertex
-/// normals that face away from the eye (POV turns them toward it, we keep the triangle's side).
+/// normals that disagree with their triangle (POV turns them toward the eye and lights by them
+/// alone; we keep the triangle's side and light only where the triangle faces the light too).
 
 #include <mvcl/model/Material.h>
 #include <mvcl/model/Scene.h>
