@@ -217,9 +217,9 @@ PovSceneSummary writePovScene(std::ostream &out, const Scene &scene, const Camer
     PovSceneSummary summary;
     const glm::dvec3 origin = scene.worldOrigin;
     const auto world = [&](const glm::vec3 &p) { return glm::dvec3(p) + origin; };
-    const auto materialOf = [&](uint32_t index) -> std::size_t {
-        return index < scene.materials.size() ? index : 0;
-    };
+    // Loaders always leave a material; a scene made by hand may not, and gets the default one.
+    const std::vector<Material> materials = scene.materials.empty() ? std::vector<Material>(1) : scene.materials;
+    const auto materialOf = [&](uint32_t index) -> std::size_t { return index < materials.size() ? index : 0; };
 
     // The materials in use, mapped first: what they lose goes into the header.
     std::set<std::size_t> used;
@@ -227,10 +227,10 @@ PovSceneSummary writePovScene(std::ostream &out, const Scene &scene, const Camer
         if (!m.indices.empty()) used.insert(materialOf(m.material));
     for (const Sphere &s : scene.spheres) used.insert(materialOf(s.material));
     for (const Plane &p : scene.planes) used.insert(materialOf(p.material));
-    std::vector<PovMaterial> povMaterials(scene.materials.size());
+    std::vector<PovMaterial> povMaterials(materials.size());
     bool transparentMesh = false;
     for (const std::size_t i : used) {
-        povMaterials[i] = povMaterialOf(scene.materials[i], scene.ambientLight);
+        povMaterials[i] = povMaterialOf(materials[i], scene.ambientLight);
         for (const std::string &lost : povMaterials[i].lost) summary.notes.push_back(lost);
     }
     for (const TriangleMesh &m : scene.meshes)
@@ -327,7 +327,7 @@ PovSceneSummary writePovScene(std::ostream &out, const Scene &scene, const Camer
 
     for (const std::size_t i : used) {
         const PovMaterial &p = povMaterials[i];
-        std::string text = "#declare " + materialName(i) + " = material {  // '" + plain(scene.materials[i].name) +
+        std::string text = "#declare " + materialName(i) + " = material {  // '" + plain(materials[i].name) +
                            "'\n  texture {\n    pigment { ";
         text += p.transmit > 0.0 ? "rgbt <" + number(p.pigment.x) + ", " + number(p.pigment.y) + ", " +
                                        number(p.pigment.z) + ", " + number(p.transmit) + ">"
@@ -354,7 +354,7 @@ PovSceneSummary writePovScene(std::ostream &out, const Scene &scene, const Camer
         if (m.indices.empty()) continue;
         const std::size_t material = materialOf(m.material);
         w.append("// mesh '" + plain(m.name) + "', layer " + std::to_string(m.layer) + ", material '" +
-                 plain(scene.materials[material].name) + "', " + std::to_string(m.indices.size()) + " triangles\n");
+                 plain(materials[material].name) + "', " + std::to_string(m.indices.size()) + " triangles\n");
         w.append("mesh2 {\n");
         writeVectors(w, "vertex_vectors", m.positions, origin);
         if (m.normals.size() == m.positions.size()) writeVectors(w, "normal_vectors", m.normals, glm::dvec3(0.0));

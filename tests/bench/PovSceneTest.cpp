@@ -169,6 +169,16 @@ TEST(PovScene, WorldSpaceIsSceneSpacePlusTheOriginAndDirectionalLightsAreParalle
     EXPECT_NE(text.find("location <100, 0, -45>"), std::string::npos);
 }
 
+TEST(PovScene, ASceneWithoutMaterialsGetsTheDefaultOne) {
+    Scene scene;
+    scene.spheres.push_back({"ball", {0.f, 0.f, 0.f}, 1.f, 3, 0});
+    std::ostringstream out;
+    const PovSceneSummary summary =
+        writePovScene(out, scene, Camera::lookAt({0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 40.f), {});
+    EXPECT_EQ(summary.materials, 1u);
+    EXPECT_NE(out.str().find("material { MvclMaterial0 }"), std::string::npos);
+}
+
 TEST(PovScene, InverseSquarePointLightBecomesAFade) {
     Scene scene;
     scene.materials.push_back(Material{});
