@@ -1,9 +1,11 @@
 #include "ImageError.h"
 
 #include <mvcl/core/Error.h>
+#include <mvcl/view/ImageIO.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -50,6 +52,31 @@ double peakSignalToNoiseRatio(const Framebuffer &image, const Framebuffer &refer
     });
     if (mse == 0.0) return std::numeric_limits<double>::infinity();
     return -10.0 * std::log10(mse);
+}
+
+LevelDifference levelDifference(const Framebuffer &image, const Framebuffer &reference, int threshold) {
+    requireSameSize(image, reference);
+    const auto level = [](float v) { return int(std::lround(linearToSrgb(v) * 255.f)); };
+    const auto &a = image.pixels();
+    const auto &b = reference.pixels();
+    LevelDifference d;
+    d.threshold = threshold;
+    long long sum = 0, above = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        int largest = 0;
+        for (int c = 0; c < 3; ++c) {
+            const int difference = std::abs(level(a[i][c]) - level(b[i][c]));
+            largest = std::max(largest, difference);
+            sum += difference;
+        }
+        d.max = std::max(d.max, largest);
+        above += largest > threshold;
+    }
+    if (!a.empty()) {
+        d.mean = double(sum) / (3.0 * double(a.size()));
+        d.shareAbove = double(above) / double(a.size());
+    }
+    return d;
 }
 
 } // namespace mvcl::bench

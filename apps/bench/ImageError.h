@@ -19,6 +19,18 @@ double relativeMeanSquaredError(const Framebuffer &image, const Framebuffer &ref
 /// +∞ when the clamped images are equal.
 double peakSignalToNoiseRatio(const Framebuffer &image, const Framebuffer &reference);
 
+/// How far apart two images are as 8-bit sRGB files show them: every linear value encoded and
+/// rounded to 0..255 as writeImage() does, so two files read back with readImage() compare
+/// level for level. For `mvcl-bench image-diff`, which checks that another renderer's picture
+/// of the same scene matches ours.
+struct LevelDifference {
+    double mean = 0.0;        ///< mean |a − b| in levels, over pixels and the three channels
+    int max = 0;              ///< the largest |a − b| of any channel of any pixel
+    double shareAbove = 0.0;  ///< fraction of pixels with some channel more than `threshold` apart
+    int threshold = 0;
+};
+LevelDifference levelDifference(const Framebuffer &image, const Framebuffer &reference, int threshold = 8);
+
 /// Throws mvcl::Error when the sizes differ (the metrics above call it).
 void requireSameSize(const Framebuffer &image, const Framebuffer &reference);
 

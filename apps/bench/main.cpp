@@ -11,6 +11,8 @@
 //   mvcl-bench convergence ...             (error against run time: ConvergenceBench.cpp)
 //   mvcl-bench cast ...                    (identical primary rays for other tracers: CastBench.cpp)
 //   mvcl-bench frame ...                   (a frame against its own rays unshaded: FrameBench.cpp)
+//   mvcl-bench pov SCENE ...               (the scene as a POV-Ray 3.7 scene: PovBench.cpp)
+//   mvcl-bench image-diff A B              (two images' difference in 8-bit levels: PovBench.cpp)
 
 #include "CommandLineValues.h"
 #include "AlternatingRuns.h"
@@ -18,6 +20,7 @@
 #include "CastBench.h"
 #include "ConvergenceBench.h"
 #include "FrameBench.h"
+#include "PovBench.h"
 
 #include <mvcl/core/WorkerPool.h>
 #include <mvcl/io/SceneLoader.h>
@@ -89,6 +92,15 @@ std::optional<Options> parseOptions(int argc, char **argv) {
     app.formatter(std::make_shared<mvcl::cli::UsageFormatter>(
         "usage: mvcl-bench [model.glb | builtin:<name>] [--size WxH] [--threads N] [--repeat R]\n"
         "                  [--embree-config OPTIONS] [--layers]"));
+    app.footer("Other modes (each with its own --help):\n"
+               "  mvcl-bench convergence ...     error against run time of the sampling modes\n"
+               "  mvcl-bench cast ...            identical primary rays for checking another tracer\n"
+               "  mvcl-bench frame ...           a frame's rays by kind and its rate against the same\n"
+               "                                 rays traced again unshaded (the traversal bound)\n"
+               "  mvcl-bench pov SCENE ...       the scene, camera, lights, materials and trace depth\n"
+               "                                 mvcl-render uses, as a POV-Ray 3.7 scene, and the\n"
+               "                                 mvcl-render camera options of the same view\n"
+               "  mvcl-bench image-diff A B      two images' difference in 8-bit levels");
     app.set_help_flag("-h,--help", "this text");
     app.add_option("model", o.model, "model file or builtin:NAME (default the 2CylinderEngine)")->option_text(" ");
     mvcl::cli::addImageSizeOption(app, o.width, o.height, "primary rays, one per pixel of a WxH image (default 1024x1024)");
@@ -157,6 +169,8 @@ int main(int argc, char **argv) {
     if (argc > 1 && std::string(argv[1]) == "convergence") return mvcl::bench::runConvergenceBench(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "cast") return mvcl::bench::runCastBench(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "frame") return mvcl::bench::runFrameBench(argc - 1, argv + 1);
+    if (argc > 1 && std::string(argv[1]) == "pov") return mvcl::bench::runPovExport(argc - 1, argv + 1);
+    if (argc > 1 && std::string(argv[1]) == "image-diff") return mvcl::bench::runImageDiff(argc - 1, argv + 1);
     std::optional<Options> options;
     try {
         options = parseOptions(argc, argv);
