@@ -161,6 +161,8 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
             first = std::min(first, samples[i].count);
             last = std::max(last, endSample[i]);
         }
+    // Whether the policy shapes rays (a magnifier): asked once, not per sample (a 3 × 3 compare).
+    const bool shaped = policy.isShaped();
     std::array<Ray, Tracer::kPacketSize> rays;
     std::array<Hit, Tracer::kPacketSize> hits;
     std::array<int, Tracer::kPacketSize> pixelOf;
@@ -171,8 +173,8 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
         for (int i = 0; i < count; ++i) {
             if (k < samples[i].count || k >= endSample[i]) continue;
             const int x = xOf[size_t(i)], y = yOf[size_t(i)];
-            const glm::vec2 p = policy.samplePosition(glm::vec2{float(x), float(y)} + sampleOffset(x, y, k, m_seed),
-                                                      width, height);
+            const glm::vec2 position = glm::vec2{float(x), float(y)} + sampleOffset(x, y, k, m_seed);
+            const glm::vec2 p = shaped ? policy.samplePosition(position, width, height) : position;
             // Member by member: a whole-struct copy of the returned ray read back 16-byte halves
             // of what was just written 4 and 8 bytes at a time (a store-forwarding stall a ray).
             const Ray ray = m_camera.generateRay(p.x, p.y, width, height);
