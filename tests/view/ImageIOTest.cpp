@@ -185,9 +185,11 @@ TEST(ImageIO, TifGoesThroughTheOpenImageIOModule) {
 #else
 // Built without the module (MVCL_WITH_OIIO=OFF): a .tif fails, naming the module it needs.
 TEST(ImageIO, TifWithoutTheModuleNamesIt) {
-    const std::string error = errorOf([] { writeImage(scratch("g.tif"), gradient()); });
-    EXPECT_NE(error.find("g.tif: the .tif format needs the OpenImageIO module mvcl-imageio-oiio"), std::string::npos)
+    fs::remove(scratch("no-module.tif"));
+    const std::string error = errorOf([] { writeImage(scratch("no-module.tif"), gradient()); });
+    EXPECT_NE(error.find("no-module.tif: the .tif format needs the OpenImageIO module mvcl-imageio-oiio"),
+              std::string::npos)
         << error;
-    EXPECT_FALSE(fs::exists(scratch("g.tif")));
+    EXPECT_FALSE(fs::exists(scratch("no-module.tif")));
 }
 #endif
