@@ -10,11 +10,12 @@ build_type="${MVCL_BUILD_TYPE:-Release}"
 
 packages=(
   g++ cmake ninja-build pkg-config
-  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenimageio-dev libtbb-dev
+  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libtbb-dev
   libcli11-dev libgtest-dev
   libglfw3-dev libimgui-dev libepoxy-dev   # mvcl-viewer
   xvfb xauth libgl1-mesa-dri              # the viewer's end-to-end test: a real window, Mesa llvmpipe
   libembree-dev libbenchmark-dev   # optional peers for mvcl-bench
+  libopenimageio-dev               # mvcl-imageio-oiio, the optional module for .tif and other formats
 )
 
 missing=()

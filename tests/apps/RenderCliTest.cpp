@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -213,6 +214,17 @@ TEST(RenderCli, UnwritableOutputExitsThree) {
     const CommandResult r = runRender("builtin:onion --size 8x8 -o /proc/forbidden/x.png");
     EXPECT_EQ(r.exitCode, 3) << r.output;
     EXPECT_NE(r.output.find("/proc/forbidden/x.png"), std::string::npos) << r.output;
+}
+
+// Start-up stays light: OpenImageIO (some 260 libraries) is loaded only when a file needs it
+// (mvcl-imageio-oiio.so), never with mvcl-render or libmvcl.so. The dynamic loader lists what it
+// would load, without running the program.
+TEST(RenderCli, StartsWithoutLoadingOpenImageIO) {
+    const CommandResult r = runCommand("LD_TRACE_LOADED_OBJECTS=1 " + quoted(MVCL_RENDER_EXE));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("libmvcl.so"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("OpenImageIO"), std::string::npos) << r.output;
+    EXPECT_LT(std::count(r.output.begin(), r.output.end(), '\n'), 40) << r.output;
 }
 
 // Every real model of the shared corpus renders to an image that is not blank.

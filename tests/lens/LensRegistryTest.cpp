@@ -215,6 +215,17 @@ TEST(LensRegistryTest, TheSameDirectoryOrFileTwiceIsNotADuplicate) {
     EXPECT_EQ(registry.lensTypes(), kInTreeLenses);
 }
 
+#ifdef MVCL_TEST_OIIO_MODULE
+// The image module mvcl-imageio-oiio.so lives with the lens plugins, but is not one: lens loading
+// passes it by (it takes only mvcl-lens-*.so), without an error.
+TEST(LensRegistryTest, TheImageModuleInThePluginFolderIsNotLoadedAsALens) {
+    ASSERT_TRUE(fs::is_regular_file(kPluginBuildDir / "mvcl-imageio-oiio.so"));
+    LensRegistry registry;
+    EXPECT_TRUE(registry.loadModules({kPluginBuildDir}).empty());
+    EXPECT_EQ(registry.lensTypes(), kInTreeLenses);
+}
+#endif
+
 TEST(LensRegistryTest, ModuleStaysLoadedWhileItsLensesLive) {
     const auto isMapped = [](const fs::path &file) {
         void *handle = dlopen(file.c_str(), RTLD_NOW | RTLD_NOLOAD);

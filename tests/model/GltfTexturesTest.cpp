@@ -13,8 +13,7 @@
 #include <mvcl/tracer/Tracer.h>
 #include <mvcl/tracer/WhittedIntegrator.h>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <stb_image_write.h>
 
 #include <gtest/gtest.h>
 
@@ -28,21 +27,25 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// An RGBA image encoded as PNG or JPEG ("png"/"jpg") in memory.
+/// stb_image_write's output callback: appends to a byte vector.
+void appendBytes(void *context, void *data, int size) {
+    auto *out = static_cast<std::vector<std::uint8_t> *>(context);
+    const auto *bytes = static_cast<const std::uint8_t *>(data);
+    out->insert(out->end(), bytes, bytes + size);
+}
+
+/// An RGBA image encoded as PNG or JPEG ("png"/"jpg", the JPEG at quality 98) in memory, keeping
+/// its first `channels` channels.
 std::vector<std::uint8_t> encode(int w, int h, const std::vector<std::uint8_t> &rgba, const char *ext,
                                  int channels = 4) {
-    const fs::path file = fs::temp_directory_path() / (std::string("mvcl-texture-test.") + ext);
-    auto out = OIIO::ImageOutput::create(file.string());
-    EXPECT_TRUE(out);
-    OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::UINT8);
-    EXPECT_TRUE(out->open(file.string(), spec));
     std::vector<std::uint8_t> pixels;
     for (int i = 0; i < w * h; ++i)
         for (int c = 0; c < channels; ++c) pixels.push_back(rgba[std::size_t(i * 4 + c)]);
-    EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
-    out->close();
-    std::ifstream in(file, std::ios::binary);
-    return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)), {});
+    std::vector<std::uint8_t> out;
+    const bool png = std::string(ext) == "png";
+    EXPECT_TRUE(png ? stbi_write_png_to_func(appendBytes, &out, w, h, channels, pixels.data(), w * channels)
+                    : stbi_write_jpg_to_func(appendBytes, &out, w, h, channels, pixels.data(), 98));
+    return out;
 }
 
 std::vector<std::uint8_t> repeated(const std::array<std::uint8_t, 4> &texel, int count) {

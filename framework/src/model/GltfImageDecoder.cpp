@@ -1,8 +1,9 @@
 #include "GltfImageDecoder_p.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <stb_image.h>
 
+#include <algorithm>
+#include <climits>
 #include <cstring>
 #include <new>
 #include <vector>
@@ -41,21 +42,21 @@ std::shared_ptr<const TextureImage> GltfImageDecoder::decode(std::span<const std
         problem = "is a " + format + " image, which mvcl does not decode";
         return nullptr;
     }
-    // OpenImageIO picks the reader from the name's extension and reads through the proxy only:
-    // nothing is opened on disk.
-    OIIO::Filesystem::IOMemReader reader(const_cast<std::uint8_t *>(bytes.data()), bytes.size());
-    const std::string virtualName = format == "PNG" ? "texture.png" : "texture.jpg";
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1); // glTF alpha is straight, not premultiplied
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create(format == "PNG" ? "png" : "jpeg", false, nullptr, &reader);
-    OIIO::ImageSpec spec;
-    if (!in || !in->set_ioproxy(&reader) || !in->open(virtualName, spec, config)) {
-        problem = "cannot be decoded as " + format + ": " + (in ? in->geterror() : OIIO::geterror());
+    // stb_image reads from memory only: nothing is opened on disk. The header first, so that the
+    // limits hold before a pixel is decoded.
+    if (bytes.size() > std::size_t(INT_MAX)) {
+        problem = "is too large to decode (" + std::to_string(bytes.size()) + " bytes)";
         return nullptr;
     }
-    const std::uint64_t width = std::uint64_t(std::max(spec.width, 0));
-    const std::uint64_t height = std::uint64_t(std::max(spec.height, 0));
-    const int channels = spec.nchannels;
+    const auto *data = reinterpret_cast<const stbi_uc *>(bytes.data());
+    const int length = int(bytes.size());
+    int headerWidth = 0, headerHeight = 0, channels = 0;
+    if (!stbi_info_from_memory(data, length, &headerWidth, &headerHeight, &channels)) {
+        problem = "cannot be decoded as " + format + ": " + stbi_failure_reason();
+        return nullptr;
+    }
+    const std::uint64_t width = std::uint64_t(std::max(headerWidth, 0));
+    const std::uint64_t height = std::uint64_t(std::max(headerHeight, 0));
     if (width == 0 || height == 0 || channels < 1) {
         problem = "has no pixels";
         return nullptr;
@@ -71,33 +72,26 @@ std::shared_ptr<const TextureImage> GltfImageDecoder::decode(std::span<const std
         problem = "would take the textures past their memory limit of " + std::to_string(m_maxTotalBytes) + " bytes";
         return nullptr;
     }
-    const int readChannels = std::min(channels, 4);
-    std::vector<std::uint8_t> raw;
+    // Grey, grey + alpha, RGB and RGBA all become RGBA (alpha straight, as glTF has it; 16-bit
+    // PNG channels keep their high 8 bits).
+    int decodedWidth = 0, decodedHeight = 0;
+    std::unique_ptr<stbi_uc, void (*)(void *)> pixels(
+        stbi_load_from_memory(data, length, &decodedWidth, &decodedHeight, &channels, 4), &stbi_image_free);
+    if (!pixels) {
+        const std::string reason = stbi_failure_reason();
+        problem = reason == "outofmem" ? "does not fit in memory" : "cannot be decoded as " + format + ": " + reason;
+        return nullptr;
+    }
+    if (std::uint64_t(decodedWidth) != width || std::uint64_t(decodedHeight) != height) {
+        problem = "cannot be decoded as " + format + ": its size changed between header and pixels";
+        return nullptr;
+    }
+    std::vector<std::uint8_t> rgba;
     try {
-        raw.resize(std::size_t(width * height) * std::size_t(readChannels));
+        rgba.assign(pixels.get(), pixels.get() + std::size_t(width * height) * 4);
     } catch (const std::bad_alloc &) {
         problem = "does not fit in memory";
         return nullptr;
-    }
-    if (!in->read_image(0, 0, 0, readChannels, OIIO::TypeDesc::UINT8, raw.data())) {
-        problem = "cannot be decoded as " + format + ": " + in->geterror();
-        return nullptr;
-    }
-    in->close();
-    // Grey, grey + alpha, RGB and RGBA all become RGBA.
-    std::vector<std::uint8_t> rgba(std::size_t(width * height) * 4);
-    for (std::size_t i = 0; i < std::size_t(width * height); ++i) {
-        const std::uint8_t *p = raw.data() + i * std::size_t(readChannels);
-        std::uint8_t *q = rgba.data() + i * 4;
-        if (readChannels <= 2) {
-            q[0] = q[1] = q[2] = p[0];
-            q[3] = readChannels == 2 ? p[1] : 255;
-        } else {
-            q[0] = p[0];
-            q[1] = p[1];
-            q[2] = p[2];
-            q[3] = readChannels == 4 ? p[3] : 255;
-        }
     }
     auto image = std::make_shared<const TextureImage>(name, int(width), int(height), std::move(rgba), space);
     m_bytesUsed += image->memoryBytes();

@@ -1,6 +1,6 @@
 #pragma once
 /// \file GltfImageDecoder_p.h
-/// Private to the glTF loader: decodes a glTF image's encoded bytes (PNG, JPEG) with OpenImageIO
+/// Private to the glTF loader: decodes a glTF image's encoded bytes (PNG, JPEG) with stb_image
 /// from memory, refusing images larger than the options allow before any pixel is decoded.
 
 #include <mvcl/model/Texture.h>
