@@ -1,0 +1,46 @@
+// The AVX2 packet traversal: the 16 rays of a packet as two 8-lane halves (PacketTraversal.inl).
+// framework/CMakeLists.txt compiles this file with -mavx2; nothing here runs unless
+// KernelDispatch.cpp found AVX2 on the CPU, and every function it compiles is in namespace
+// isa_avx2 (KernelIsa.h), shared only with TraversalAvx2.cpp, which has the same flags.
+
+#define MVCL_ISA_NAMESPACE isa_avx2
+
+#include "KernelTables.h"
+
+#if defined(__AVX2__)
+
+#include "LayerPriorityHit.h"
+#include "NearestHit.h"
+
+#define MVCL_PACKET_AVX512 0
+#include "PacketTraversal.inl"
+
+namespace mvcl::detail {
+
+namespace {
+unsigned closestNearest(const WideBvh &wide, unsigned lanes, PacketSetup &s, PacketBests<NearestHit> &best) {
+    return tracePacket<false>(wide, lanes, s, best);
+}
+unsigned closestLayered(const WideBvh &wide, unsigned lanes, PacketSetup &s, PacketBests<LayerPriorityHit> &best) {
+    return tracePacket<false>(wide, lanes, s, best);
+}
+unsigned occluded(const WideBvh &wide, unsigned lanes, PacketSetup &s, UnusedBests &unused) {
+    return tracePacket<true>(wide, lanes, s, unused);
+}
+
+constinit const PacketKernels kTable{"avx2", closestNearest, closestLayered, occluded};
+} // namespace
+
+constinit const PacketKernels *const kPacketKernelsAvx2 = &kTable;
+
+} // namespace mvcl::detail
+
+#elif defined(__x86_64__)
+#error "framework/CMakeLists.txt compiles this unit with -mavx2 on x86-64"
+#else // not built for AVX2 (not an x86-64 target): packets go ray by ray
+
+namespace mvcl::detail {
+constinit const PacketKernels *const kPacketKernelsAvx2 = nullptr;
+} // namespace mvcl::detail
+
+#endif

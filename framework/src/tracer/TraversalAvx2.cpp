@@ -1,0 +1,44 @@
+// The AVX2 single-ray traversal: each wide node's eight boxes in one 256-bit test
+// (WideTraversal.inl). framework/CMakeLists.txt compiles this file, and only this one of the
+// single-ray kernels, with -mavx2; nothing here runs unless KernelDispatch.cpp found AVX2 on the
+// CPU, and every function it compiles is in namespace isa_avx2 (KernelIsa.h).
+
+#define MVCL_ISA_NAMESPACE isa_avx2
+
+#include "KernelTables.h"
+
+#if defined(__AVX2__)
+
+#include "LayerPriorityHit.h"
+#include "NearestHit.h"
+
+#define MVCL_TRAVERSAL_AVX2 1
+#include "WideTraversal.inl"
+
+namespace mvcl::detail {
+
+namespace {
+bool closestNearest(const WideBvh &wide, const RayContext &c, NearestHit &best) {
+    return traverse<false>(wide, c, best);
+}
+bool closestLayered(const WideBvh &wide, const RayContext &c, LayerPriorityHit &best) {
+    return traverse<false>(wide, c, best);
+}
+bool occluded(const WideBvh &wide, const RayContext &c, NearestHit &unused) { return traverse<true>(wide, c, unused); }
+
+constinit const SingleRayKernels kTable{"avx2", closestNearest, closestLayered, occluded};
+} // namespace
+
+constinit const SingleRayKernels *const kSingleRayKernelsAvx2 = &kTable;
+
+} // namespace mvcl::detail
+
+#elif defined(__x86_64__)
+#error "framework/CMakeLists.txt compiles this unit with -mavx2 on x86-64"
+#else // not built for AVX2 (not an x86-64 target): no such variant
+
+namespace mvcl::detail {
+constinit const SingleRayKernels *const kSingleRayKernelsAvx2 = nullptr;
+} // namespace mvcl::detail
+
+#endif
