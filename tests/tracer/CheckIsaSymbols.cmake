@@ -1,6 +1,6 @@
 # Fails when code compiled for one instruction set could run in place of another's: the tracer's
 # kernel units (framework/src/tracer/*Avx2.cpp, *Avx512.cpp, compiled with -mavx2 / -mavx512f) must
-# define no weak symbol that an object of another instruction set defines too (the linker keeps
+# define no weak function that an object of another instruction set defines too (the linker keeps
 # one copy of a weak symbol, any one, so a baseline caller could end up in AVX2 code), and must
 # run nothing at start-up (that would run before the CPU is checked). See
 # framework/src/tracer/KernelIsa.h.
@@ -8,7 +8,7 @@
 #   cmake -DNM=<nm> "-DOBJECTS=<object>|<object>|..." -P CheckIsaSymbols.cmake
 #
 # An object's instruction set is read from its name: ...Avx2.cpp.o, ...Avx512.cpp.o, and baseline
-# for every other. Prints "<n> objects, <k> kernel objects: <w> weak symbols in kernel objects,
+# for every other. Prints "<n> objects, <k> kernel objects: <w> weak functions in kernel objects,
 # <s> shared with another instruction set, <i> with start-up code" and, when s or i is not 0,
 # the symbols and objects.
 cmake_minimum_required(VERSION 3.25)
@@ -17,8 +17,10 @@ if(NOT NM OR NOT OBJECTS)
 endif()
 string(REPLACE "|" ";" objects "${OBJECTS}")
 
-# Weak definitions as nm prints them: W (function or object), V (object), u (unique global).
-set(weak_regex "^[0-9a-fA-F]* +[WVu] ([^ ]+)$")
+# Weak definitions of code, as nm prints them: W. Weak data (V: typeinfo, vtables, a function's
+# static variables) does not depend on the instruction set; a vtable's functions are checked as
+# functions.
+set(weak_regex "^[0-9a-fA-F]* +W ([^ ]+)$")
 set(startup_regex "_GLOBAL__sub_I_|_GLOBAL__I_|__cxx_global_var_init")
 
 function(weak_symbols object out_var)
@@ -71,7 +73,7 @@ foreach(isa IN LISTS isas)
     list(REMOVE_DUPLICATES weak_${isa})
 endforeach()
 
-# A kernel object's weak symbol is shared when an object of another instruction set defines it.
+# A kernel object's weak function is shared when an object of another instruction set defines it.
 set(kernel_weak_count 0)
 set(shared)
 foreach(isa avx2 avx512)
@@ -95,7 +97,7 @@ foreach(isa avx2 avx512)
 endforeach()
 list(LENGTH shared shared_count)
 list(LENGTH startup_objects startup_count)
-message("${object_count} objects, ${kernel_objects} kernel objects: ${kernel_weak_count} weak symbols in kernel "
+message("${object_count} objects, ${kernel_objects} kernel objects: ${kernel_weak_count} weak functions in kernel "
         "objects, ${shared_count} shared with another instruction set, ${startup_count} with start-up code")
 if(shared_count GREATER 0 OR startup_count GREATER 0)
     set(report "")

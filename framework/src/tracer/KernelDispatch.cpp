@@ -14,6 +14,7 @@ namespace {
 
 // Set by tests (TraversalIsa.h).
 std::atomic<bool> g_forceSseTraversal{false};
+std::atomic<bool> g_forceSseBinning{false};
 std::atomic<PacketIsa> g_packetIsaLimit{PacketIsa::Avx512};
 
 // __builtin_cpu_supports (GCC and clang) also checks that the OS saves the wider registers.
@@ -28,6 +29,7 @@ bool cpuHasAvx512() { return false; }
 } // namespace
 
 void forceSseTraversal(bool force) { g_forceSseTraversal.store(force); }
+void forceSseBinning(bool force) { g_forceSseBinning.store(force); }
 void limitPacketIsa(PacketIsa isa) { g_packetIsaLimit.store(isa); }
 
 bool avx2TraversalAvailable() { return kSingleRayKernelsAvx2 && cpuHasAvx2(); }
@@ -50,6 +52,10 @@ const PacketKernels *packetKernels() {
     case PacketIsa::SingleRays: break;
     }
     return nullptr;
+}
+
+const BuildKernels *buildKernels() {
+    return kBuildKernelsAvx2 && cpuHasAvx2() && !g_forceSseBinning.load() ? kBuildKernelsAvx2 : nullptr;
 }
 
 } // namespace mvcl::detail

@@ -2,19 +2,23 @@
 // Private: the tracer's kernels per instruction set, as tables of plain function pointers.
 //
 // Each table is defined by the one translation unit compiled for its instruction set
-// (TraversalSse2.cpp, TraversalAvx2.cpp, PacketAvx2.cpp, PacketAvx512.cpp; the flags are in
-// framework/CMakeLists.txt), as constant data: the program never runs a line of an
+// (TraversalSse2.cpp, TraversalAvx2.cpp, PacketAvx2.cpp, PacketAvx512.cpp, BvhBuildAvx2.cpp; the
+// flags are in framework/CMakeLists.txt), as constant data: the program never runs a line of an
 // extension's unit before KernelDispatch.cpp has checked that the CPU has that extension. A
-// Tracer picks its tables once, when it is made.
+// Tracer picks its tables once, when it is made; a BVH build picks its table when it starts.
 // The entries take only types that are the same in every unit (KernelIsa.h).
 
 #include <cstdint>
 
 namespace mvcl::detail {
 
+struct BinStorage;
+struct Binner;
+struct BuildPrim;
 class LayerPriorityHit;
 class NearestHit;
 struct PacketSetup;
+struct RangeBounds;
 struct RayContext;
 struct UnusedBests;
 struct WideBvh;
@@ -41,12 +45,30 @@ struct PacketKernels {
     unsigned (*occluded)(const WideBvh &wide, unsigned lanes, PacketSetup &s, UnusedBests &unused);
 };
 
+/// The BVH build's binning with SAH sweep and its partition (BvhBuild.h), where a faster variant
+/// than the SSE2 code of BvhBuilder.cpp exists; both build the same tree bit for bit. The
+/// builder runs these on its threads: how a node's bins are split between tasks stays with it.
+struct BuildKernels {
+    /// Makes in `out` the bins of [begin, end).
+    void (*bin)(const Binner &binner, const BuildPrim *prims, uint32_t begin, uint32_t end, BinStorage &out);
+    /// Adds the bins of `other` to those of `all` (exact).
+    void (*merge)(BinStorage &all, const BinStorage &other, int nBins);
+    /// The SAH sweep over the bins: lowers bestCost to the cheapest split, setting bestAxis and
+    /// bestSplit, as Builder::findSplit() does.
+    void (*sweep)(const Binner &binner, const BinStorage &bins, int &bestAxis, int &bestSplit, double &bestCost);
+    /// Partitions [begin, end) by bin (≤ split goes left) and returns where the right side
+    /// starts, with both sides' bounds, as Builder::partition() does.
+    uint32_t (*partition)(const Binner &binner, int axis, int split, BuildPrim *prims, uint32_t begin,
+                          uint32_t end, RangeBounds &left, RangeBounds &right);
+};
+
 // The tables, each defined by its unit; null when this build has no such variant (a target other
 // than x86-64, where CMake adds no -m flags and the unit compiles to this null pointer).
 extern const SingleRayKernels *const kSingleRayKernelsBaseline; ///< never null
 extern const SingleRayKernels *const kSingleRayKernelsAvx2;
 extern const PacketKernels *const kPacketKernelsAvx2;
 extern const PacketKernels *const kPacketKernelsAvx512;
+extern const BuildKernels *const kBuildKernelsAvx2;
 
 /// The single-ray table for a Tracer made now: AVX2 when built and the CPU has it, unless a
 /// test forces the baseline (TraversalIsa.h).
@@ -54,5 +76,7 @@ const SingleRayKernels &singleRayKernels();
 /// The packet table for a Tracer made now, within the limit tests set; null when packets go ray
 /// by ray (no AVX2).
 const PacketKernels *packetKernels();
+/// The faster build passes for a build started now; null for Builder's SSE2 ones.
+const BuildKernels *buildKernels();
 
 } // namespace mvcl::detail
