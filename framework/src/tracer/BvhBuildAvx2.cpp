@@ -8,7 +8,7 @@
 
 #include "KernelTables.h"
 
-#if defined(__AVX2__)
+#if defined(__AVX2__) && MVCL_EXTENSION_KERNELS
 
 #include "BvhBuild.h"
 
@@ -207,7 +207,11 @@ uint32_t partitionAvx2(const Binner &binner, int axis, int split, BuildPrim *pri
         }
         if (i == j) break;
         // prims[i] belongs right, prims[j − 1] left.
-        std::swap(prims[i], prims[j - 1]);
+        // By hand rather than std::swap, a library template the baseline code instantiates too
+        // (KernelIsa.h).
+        const BuildPrim moved = prims[i];
+        prims[i] = prims[j - 1];
+        prims[j - 1] = moved;
         grow(left, pj);
         grow(right, pi);
         ++i;
@@ -228,9 +232,9 @@ constinit const BuildKernels *const kBuildKernelsAvx2 = &kTable;
 
 } // namespace mvcl::detail
 
-#elif defined(__x86_64__)
+#elif defined(__x86_64__) && MVCL_EXTENSION_KERNELS
 #error "framework/CMakeLists.txt compiles this unit with -mavx2 on x86-64"
-#else // not built for AVX2 (not an x86-64 target): the SSE2 passes of BvhBuilder.cpp
+#else // not built for AVX2 (not an x86-64 target, or not optimised for speed): the SSE2 passes of BvhBuilder.cpp
 
 namespace mvcl::detail {
 constinit const BuildKernels *const kBuildKernelsAvx2 = nullptr;

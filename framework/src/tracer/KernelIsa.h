@@ -31,3 +31,16 @@
 #else
 #define MVCL_KERNEL_INLINE inline
 #endif
+
+// Where the compiler inlines little (-O0, -Os), small inline functions of the standard library
+// and GLM that every kernel calls (std::unique_ptr::get, glm's operator[]) are emitted out of
+// line in every unit, outside any kernel namespace, and could not be kept apart. Such builds
+// compile no extension kernels: those units give null tables and the baseline runs
+// (KernelDispatch.cpp). The compiler does not tell -Og and -O1 apart from faster levels; with
+// GCC 12 and clang 14, sanitizers or not, they keep the units apart, and IsaSymbols.* would
+// report it if that changed.
+#if defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
+#define MVCL_EXTENSION_KERNELS 1
+#else
+#define MVCL_EXTENSION_KERNELS 0
+#endif

@@ -8,6 +8,8 @@
 // Tracer picks its tables once, when it is made; a BVH build picks its table when it starts.
 // The entries take only types that are the same in every unit (KernelIsa.h).
 
+#include "KernelIsa.h"
+
 #include <cstdint>
 
 namespace mvcl::detail {
@@ -62,8 +64,9 @@ struct BuildKernels {
                           uint32_t end, RangeBounds &left, RangeBounds &right);
 };
 
-// The tables, each defined by its unit; null when this build has no such variant (a target other
-// than x86-64, where CMake adds no -m flags and the unit compiles to this null pointer).
+// The tables, each defined by its unit; null when this build has no such variant: a target other
+// than x86-64, where CMake adds no -m flags, or a build that does not optimise for speed
+// (MVCL_EXTENSION_KERNELS, KernelIsa.h).
 extern const SingleRayKernels *const kSingleRayKernelsBaseline; ///< never null
 extern const SingleRayKernels *const kSingleRayKernelsAvx2;
 extern const PacketKernels *const kPacketKernelsAvx2;

@@ -7,7 +7,7 @@
 
 #include "KernelTables.h"
 
-#if defined(__AVX2__)
+#if defined(__AVX2__) && MVCL_EXTENSION_KERNELS
 
 #include "LayerPriorityHit.h"
 #include "NearestHit.h"
@@ -35,9 +35,9 @@ constinit const PacketKernels *const kPacketKernelsAvx2 = &kTable;
 
 } // namespace mvcl::detail
 
-#elif defined(__x86_64__)
+#elif defined(__x86_64__) && MVCL_EXTENSION_KERNELS
 #error "framework/CMakeLists.txt compiles this unit with -mavx2 on x86-64"
-#else // not built for AVX2 (not an x86-64 target): packets go ray by ray
+#else // not built for AVX2 (not an x86-64 target, or not optimised for speed): packets go ray by ray
 
 namespace mvcl::detail {
 constinit const PacketKernels *const kPacketKernelsAvx2 = nullptr;

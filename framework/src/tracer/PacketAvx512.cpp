@@ -7,7 +7,7 @@
 
 #include "KernelTables.h"
 
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) && MVCL_EXTENSION_KERNELS
 
 #include "LayerPriorityHit.h"
 #include "NearestHit.h"
@@ -35,9 +35,9 @@ constinit const PacketKernels *const kPacketKernelsAvx512 = &kTable;
 
 } // namespace mvcl::detail
 
-#elif defined(__x86_64__)
+#elif defined(__x86_64__) && MVCL_EXTENSION_KERNELS
 #error "framework/CMakeLists.txt compiles this unit with -mavx512f on x86-64"
-#else // not built for AVX-512 (not an x86-64 target): no such variant
+#else // not built for AVX-512 (not an x86-64 target, or not optimised for speed): no such variant
 
 namespace mvcl::detail {
 constinit const PacketKernels *const kPacketKernelsAvx512 = nullptr;

@@ -4,9 +4,9 @@
 
 #include "TracerPrivate.h"
 
+#include "LayerPriorityHit.h"
 #include "LeafIntersection.h"
 #include "NearestHit.h"
-#include "LayerPriorityHit.h"
 #include "PacketSetup.h"
 #include "RayContext.h"
 #include "WatertightTriangle.h"
