@@ -99,7 +99,8 @@ inline __m256d sahTerms(const __m256 acc[3], __m128i count) {
     return _mm256_blendv_pd(_mm256_mul_pd(area, _mm256_cvtepi32_pd(blocks)), _mm256_set1_pd(-1.0), none);
 }
 
-/// The bins of [begin, end) as BinSet8, made in the caller's storage (BvhBuild.h, BinStorage).
+/// The bins of [begin, end) as BinSet8, made in the caller's storage (BvhBuild.h, BinStorage):
+/// one half of a node binned as two tasks.
 void binAvx2(const Binner &binner, const BuildPrim *prims, uint32_t begin, uint32_t end, BinStorage &out) {
     static_assert(sizeof(BinSet8) <= sizeof(BinStorage) && alignof(BinSet8) <= alignof(BinStorage));
     static_assert(std::is_trivially_destructible_v<BinSet8>);
@@ -118,9 +119,8 @@ void mergeBinsAvx2(BinStorage &all, const BinStorage &other, int nBins) {
 /// Builder::findSplit's sweep on BinSet8, the three axes' sweeps side by side in double lanes:
 /// the same costs, compared in findSplit's order (axis by axis, bin by bin), so the same split
 /// (the tests build trees both ways and compare them).
-void sweepAvx2(const Binner &binner, const BinStorage &bins, int &bestAxis, int &bestSplit, double &bestCost) {
+inline void sweep(const Binner &binner, const BinSet8 &all, int &bestAxis, int &bestSplit, double &bestCost) {
     const int nBins = binner.nBins;
-    const BinSet8 &all = binsIn(bins);
     const __m256 empty = _mm256_set1_ps(std::numeric_limits<float>::infinity());
     alignas(32) double rightCost[kBins][4];
     __m256 acc[3] = {empty, empty, empty};
@@ -149,6 +149,22 @@ void sweepAvx2(const Binner &binner, const BinStorage &bins, int &bestAxis, int 
         for (int b = 0; b < nBins - 1; ++b)
             if (cost[b][axis] < bestCost) bestCost = cost[b][axis], bestAxis = axis, bestSplit = b;
     }
+}
+
+/// sweep() on the bins of the caller's storage (a node binned as two halves, merged).
+void sweepAvx2(const Binner &binner, const BinStorage &bins, int &bestAxis, int &bestSplit, double &bestCost) {
+    sweep(binner, binsIn(bins), bestAxis, bestSplit, bestCost);
+}
+
+/// Binning and sweep of a node binned on one thread (all but the largest nodes). The bins are a
+/// local here, not the caller's storage: __m256 may alias anything, and only for a local does
+/// the compiler know that storing a bin does not change the primitives being read (binning into
+/// BinStorage made single-threaded builds 6 % slower).
+void findSplitAvx2(const Binner &binner, const BuildPrim *prims, uint32_t begin, uint32_t end, int &bestAxis,
+                   int &bestSplit, double &bestCost) {
+    BinSet8 all(binner.nBins);
+    all.add(binner, prims, begin, end);
+    sweep(binner, all, bestAxis, bestSplit, bestCost);
 }
 
 /// Builder::partition with AVX2: the same swaps in the same order (each primitive's side is
@@ -225,7 +241,7 @@ uint32_t partitionAvx2(const Binner &binner, int axis, int split, BuildPrim *pri
 } // namespace MVCL_ISA_NAMESPACE
 
 namespace {
-constinit const BuildKernels kTable{binAvx2, mergeBinsAvx2, sweepAvx2, partitionAvx2};
+constinit const BuildKernels kTable{findSplitAvx2, binAvx2, mergeBinsAvx2, sweepAvx2, partitionAvx2};
 } // namespace
 
 constinit const BuildKernels *const kBuildKernelsAvx2 = &kTable;

@@ -281,17 +281,14 @@ private:
     /// findSplit with m_fast's binning and sweep, the halves binned as two tasks as above.
     void findSplitFast(const Binner &binner, uint32_t begin, uint32_t end, bool halves, int &bestAxis,
                        int &bestSplit, double &bestCost) const {
+        if (!halves) return m_fast->findSplit(binner, m_prims, begin, end, bestAxis, bestSplit, bestCost);
         BinStorage all, upper; // made by m_fast->bin()
-        if (halves) {
-            const uint32_t mid = begin + (end - begin) / 2;
-            tbb::this_task_arena::isolate([&] {
-                tbb::parallel_invoke([&] { m_fast->bin(binner, m_prims, begin, mid, all); },
-                                     [&] { m_fast->bin(binner, m_prims, mid, end, upper); });
-            });
-            m_fast->merge(all, upper, binner.nBins);
-        } else {
-            m_fast->bin(binner, m_prims, begin, end, all);
-        }
+        const uint32_t mid = begin + (end - begin) / 2;
+        tbb::this_task_arena::isolate([&] {
+            tbb::parallel_invoke([&] { m_fast->bin(binner, m_prims, begin, mid, all); },
+                                 [&] { m_fast->bin(binner, m_prims, mid, end, upper); });
+        });
+        m_fast->merge(all, upper, binner.nBins);
         m_fast->sweep(binner, all, bestAxis, bestSplit, bestCost);
     }
 

@@ -11,7 +11,7 @@
 //   - every kernel function sits in `inline namespace MVCL_ISA_NAMESPACE`: isa_avx2 in the units
 //     compiled with -mavx2, isa_avx512 in the one compiled with -mavx512f, isa_baseline in every
 //     other. Each such unit defines MVCL_ISA_NAMESPACE before its first include, next to the
-//     code it selects, and framework/CMakeLists.txt gives the file its flags by the same name.
+//     code it selects, and framework/CMakeLists.txt gives the file the matching flags.
 //     Copies for different instruction sets then have different symbols; callers still write
 //     detail::testLeaf, the inline namespace being transparent to them;
 //   - the types the tables pass between units (RayContext, the closest-hit states, PacketSetup,
@@ -19,7 +19,7 @@
 //     member functions are MVCL_KERNEL_INLINE: always inlined, so no object has an out-of-line
 //     copy of them to share.
 // The IsaSymbols.* tests (tests/tracer/CheckIsaSymbols.cmake) check the result on the objects:
-// no weak symbol defined by objects of two instruction sets, and no start-up code in the units
+// no weak function defined by objects of two instruction sets, and no start-up code in the units
 // of an extension (it would run before any CPU check).
 
 #if !defined(MVCL_ISA_NAMESPACE)

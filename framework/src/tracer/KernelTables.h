@@ -51,12 +51,15 @@ struct PacketKernels {
 /// than the SSE2 code of BvhBuilder.cpp exists; both build the same tree bit for bit. The
 /// builder runs these on its threads: how a node's bins are split between tasks stays with it.
 struct BuildKernels {
-    /// Makes in `out` the bins of [begin, end).
+    /// Bins [begin, end) and lowers bestCost to the cheapest split, setting bestAxis and
+    /// bestSplit, as Builder::findSplit() does on one thread.
+    void (*findSplit)(const Binner &binner, const BuildPrim *prims, uint32_t begin, uint32_t end, int &bestAxis,
+                      int &bestSplit, double &bestCost);
+    /// For a node binned as two tasks: makes in `out` the bins of [begin, end).
     void (*bin)(const Binner &binner, const BuildPrim *prims, uint32_t begin, uint32_t end, BinStorage &out);
     /// Adds the bins of `other` to those of `all` (exact).
     void (*merge)(BinStorage &all, const BinStorage &other, int nBins);
-    /// The SAH sweep over the bins: lowers bestCost to the cheapest split, setting bestAxis and
-    /// bestSplit, as Builder::findSplit() does.
+    /// The SAH sweep over the merged bins, with findSplit's result.
     void (*sweep)(const Binner &binner, const BinStorage &bins, int &bestAxis, int &bestSplit, double &bestCost);
     /// Partitions [begin, end) by bin (≤ split goes left) and returns where the right side
     /// starts, with both sides' bounds, as Builder::partition() does.

@@ -18,17 +18,10 @@
 namespace mvcl::detail {
 
 namespace {
-unsigned closestNearest(const WideBvh &wide, unsigned lanes, PacketSetup &s, PacketBests<NearestHit> &best) {
-    return tracePacket<false>(wide, lanes, s, best);
-}
-unsigned closestLayered(const WideBvh &wide, unsigned lanes, PacketSetup &s, PacketBests<LayerPriorityHit> &best) {
-    return tracePacket<false>(wide, lanes, s, best);
-}
-unsigned occluded(const WideBvh &wide, unsigned lanes, PacketSetup &s, UnusedBests &unused) {
-    return tracePacket<true>(wide, lanes, s, unused);
-}
-
-constinit const PacketKernels kTable{"avx2", closestNearest, closestLayered, occluded};
+// The walk's instances themselves, no wrapper: a call less per packet.
+constinit const PacketKernels kTable{"avx2", tracePacket<false, PacketBests<NearestHit>>,
+                                     tracePacket<false, PacketBests<LayerPriorityHit>>,
+                                     tracePacket<true, UnusedBests>};
 } // namespace
 
 constinit const PacketKernels *const kPacketKernelsAvx2 = &kTable;

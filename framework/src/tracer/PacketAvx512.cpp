@@ -1,7 +1,7 @@
-// The AVX-512 packet traversal: the 16 rays of a packet in one 512-bit register (PacketTraversal.inl).
-// framework/CMakeLists.txt compiles this file with -mavx512f; nothing here runs unless
-// KernelDispatch.cpp found AVX-512F on the CPU, and every function it compiles is in namespace
-// isa_avx512 (KernelIsa.h), compiled by no other unit.
+// The AVX-512 packet traversal: the 16 rays of a packet in one 512-bit register
+// (PacketTraversal.inl). framework/CMakeLists.txt compiles this file with -mavx512f; nothing here
+// runs unless KernelDispatch.cpp found AVX-512F on the CPU, and every function it compiles is in
+// namespace isa_avx512 (KernelIsa.h), compiled by no other unit.
 
 #define MVCL_ISA_NAMESPACE isa_avx512
 
@@ -18,17 +18,10 @@
 namespace mvcl::detail {
 
 namespace {
-unsigned closestNearest(const WideBvh &wide, unsigned lanes, PacketSetup &s, PacketBests<NearestHit> &best) {
-    return tracePacket<false>(wide, lanes, s, best);
-}
-unsigned closestLayered(const WideBvh &wide, unsigned lanes, PacketSetup &s, PacketBests<LayerPriorityHit> &best) {
-    return tracePacket<false>(wide, lanes, s, best);
-}
-unsigned occluded(const WideBvh &wide, unsigned lanes, PacketSetup &s, UnusedBests &unused) {
-    return tracePacket<true>(wide, lanes, s, unused);
-}
-
-constinit const PacketKernels kTable{"avx512", closestNearest, closestLayered, occluded};
+// The walk's instances themselves, no wrapper: a call less per packet.
+constinit const PacketKernels kTable{"avx512", tracePacket<false, PacketBests<NearestHit>>,
+                                     tracePacket<false, PacketBests<LayerPriorityHit>>,
+                                     tracePacket<true, UnusedBests>};
 } // namespace
 
 constinit const PacketKernels *const kPacketKernelsAvx512 = &kTable;

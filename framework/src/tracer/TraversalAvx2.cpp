@@ -18,15 +18,9 @@
 namespace mvcl::detail {
 
 namespace {
-bool closestNearest(const WideBvh &wide, const RayContext &c, NearestHit &best) {
-    return traverse<false>(wide, c, best);
-}
-bool closestLayered(const WideBvh &wide, const RayContext &c, LayerPriorityHit &best) {
-    return traverse<false>(wide, c, best);
-}
-bool occluded(const WideBvh &wide, const RayContext &c, NearestHit &unused) { return traverse<true>(wide, c, unused); }
-
-constinit const SingleRayKernels kTable{"avx2", closestNearest, closestLayered, occluded};
+// The walk's instances themselves, no wrapper: a call less per query.
+constinit const SingleRayKernels kTable{"avx2", traverse<false, NearestHit>, traverse<false, LayerPriorityHit>,
+                                        traverse<true, NearestHit>};
 } // namespace
 
 constinit const SingleRayKernels *const kSingleRayKernelsAvx2 = &kTable;
