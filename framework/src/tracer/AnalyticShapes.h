@@ -3,12 +3,15 @@
 // double costs nothing measurable and makes t accurate to float rounding (spawned rays offset by
 // the error bounds in interaction() then never re-hit the surface).
 
+#include "KernelIsa.h"
+
 #include <glm/vec3.hpp>
 
 #include <cmath>
 #include <utility>
 
 namespace mvcl::detail {
+inline namespace MVCL_ISA_NAMESPACE { // one copy per kernel instruction set (KernelIsa.h)
 
 /// Roots of |o + t·d − c|² = r², ascending, in the numerically careful form of Ray Tracing Gems
 /// ch. 7 (Haines et al.): the discriminant from the perpendicular distance, q with the sign of b
@@ -47,4 +50,5 @@ inline double planeT(const glm::vec3 &origin, const glm::vec3 &direction, const 
     return num / denom;
 }
 
+} // namespace MVCL_ISA_NAMESPACE
 } // namespace mvcl::detail

@@ -19,6 +19,7 @@
 // hand the result to a layer seen before. Exact ties resolve as in NearestHit (lower layer), and
 // when no other layer has a hit within the window the result is NearestHit's.
 
+#include "KernelIsa.h"
 #include "RayContext.h"
 
 #include <mvcl/model/LayerTable.h>
@@ -34,11 +35,11 @@ class LayerPriorityHit {
 public:
     static constexpr bool kUsesTError = true;
     /// contactWindow: the scene's contact tolerance divided by the ray direction's length.
-    explicit LayerPriorityHit(float contactWindow) : m_contactWindow(contactWindow) {}
+    MVCL_KERNEL_INLINE explicit LayerPriorityHit(float contactWindow) : m_contactWindow(contactWindow) {}
 
-    float cap() const { return m_windowEnd; }
-    bool mayMatter(const Hit &cand) const { return cand.t <= m_windowEnd; }
-    bool offer(const RayContext &c, const Hit &cand, float tError) {
+    MVCL_KERNEL_INLINE float cap() const { return m_windowEnd; }
+    MVCL_KERNEL_INLINE bool mayMatter(const Hit &cand) const { return cand.t <= m_windowEnd; }
+    MVCL_KERNEL_INLINE bool offer(const RayContext &c, const Hit &cand, float tError) {
         if (!(cand.t <= m_windowEnd)) return false;
         const float end = cand.t + std::max(2.f * tError, m_contactWindow);
         const uint32_t bit = 1u << cand.layer;
@@ -53,7 +54,7 @@ public:
         }
         return true;
     }
-    bool resolve(Hit &out) const {
+    MVCL_KERNEL_INLINE bool resolve(Hit &out) const {
         for (uint32_t rest = m_layers; rest; rest &= rest - 1) {
             const Hit &h = m_nearest[std::countr_zero(rest)].hit;
             if (h.t <= m_windowEnd) {

@@ -4,6 +4,7 @@
 // this interface and LayerPriorityHit's, so a single-layer query runs exactly the code it ran
 // before layer priority existed.
 
+#include "KernelIsa.h"
 #include "RayContext.h"
 
 #include <mvcl/tracer/Hit.h>
@@ -15,18 +16,18 @@ public:
     /// offer() ignores the error bound, so the kernel need not compute it.
     static constexpr bool kUsesTError = false;
     /// Hits beyond this t cannot change the result (the traversal and kernel cap).
-    float cap() const { return m_best.t; }
+    MVCL_KERNEL_INLINE float cap() const { return m_best.t; }
     /// False when a hit at t (and every farther hit of the same primitive) cannot change the result.
-    bool mayMatter(const Hit &cand) const { return hitPrecedes(cand, m_best); }
+    MVCL_KERNEL_INLINE bool mayMatter(const Hit &cand) const { return hitPrecedes(cand, m_best); }
     /// Offers an accepted-range candidate with the error bound of its t (unused here). Returns
     /// true if the result changed.
-    bool offer(const RayContext &c, const Hit &cand, float /*tError*/) {
+    MVCL_KERNEL_INLINE bool offer(const RayContext &c, const Hit &cand, float /*tError*/) {
         if (!hitPrecedes(cand, m_best)) return false;
         if (!c.acceptsPoint(cand.t)) return false;
         m_best = cand;
         return true;
     }
-    bool resolve(Hit &out) const {
+    MVCL_KERNEL_INLINE bool resolve(Hit &out) const {
         if (!m_best.isValid()) return false;
         out = m_best;
         return true;

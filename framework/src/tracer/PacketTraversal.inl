@@ -1,7 +1,9 @@
-// Private: packet traversal of the wide BVH, 16 rays at once (a 4×4 tile of coherent rays), included
-// twice by Tracer.cpp: as namespace `packet_avx2` inside `#pragma GCC target("avx2")` (the 16 rays
-// as two 8-lane halves) and as `packet_avx512` inside `#pragma GCC target("avx512f")` (one 16-lane
-// register), chosen at run time. No include guard on purpose.
+#pragma once
+// Private: packet traversal of the wide BVH, 16 rays at once (a 4×4 tile of coherent rays),
+// compiled by two translation units: PacketAvx2.cpp (MVCL_PACKET_AVX512 0, built with -mavx2: the
+// 16 rays as two 8-lane halves) and PacketAvx512.cpp (MVCL_PACKET_AVX512 1, built with -mavx512f:
+// one 16-lane register). Each exports the walk as a table (KernelTables.h) and a Tracer picks one
+// at run time. Everything here lands in the unit's own namespace (KernelIsa.h).
 //
 // Each child box is tested against all rays of the packet (ray lanes, not child lanes), with the
 // arithmetic of intersectBox() lane by lane: same operands, same order, same NaN rule. A ray
@@ -14,16 +16,32 @@
 // testLeaf; either way every t, barycentric and bound is the single-ray arithmetic.
 //
 // Each walk shares one near/far slab choice: tracePacket() splits the rays by direction octant.
-// Expects MVCL_PACKET_NS, MVCL_PACKET_AVX512 (0 or 1) and the helpers of Tracer.cpp.
 
-namespace MVCL_PACKET_NS {
+#if !defined(MVCL_PACKET_AVX512)
+#error "the including unit chooses the variant: MVCL_PACKET_AVX512 0 or 1"
+#endif
 
-using detail::kPacketLanes;
-using detail::kWidth;
-using detail::PacketRays;
-using detail::RayContext;
-using detail::WideLeaf;
-using detail::WideNode;
+#include "KernelIsa.h"
+#include "LeafIntersection.h"
+#include "PacketRays.h"
+#include "PacketSetup.h"
+#include "RayContext.h"
+#include "WatertightTriangle.h"
+#include "WideBvh.h"
+
+#include <mvcl/core/FloatBits.h>
+#include <mvcl/tracer/TriangleIntersection.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+
+#include <immintrin.h>
+
+namespace mvcl::detail {
+inline namespace MVCL_ISA_NAMESPACE {
 
 /// Sixteen floats, one per ray of the packet.
 struct Lanes {
@@ -87,7 +105,7 @@ inline float minimum(unsigned bits, Lanes a) {
     // By hand, zero-masked forms throughout (see max()): _mm512_mask_reduce_min_ps trips the
     // same warning.
     constexpr __mmask16 all = 0xffff;
-    __m512 m = _mm512_mask_mov_ps(_mm512_set1_ps(detail::kInfinity), __mmask16(bits), a.v);
+    __m512 m = _mm512_mask_mov_ps(_mm512_set1_ps(kInfinity), __mmask16(bits), a.v);
     m = _mm512_maskz_min_ps(all, m, _mm512_maskz_shuffle_f32x4(all, m, m, _MM_SHUFFLE(1, 0, 3, 2)));
     m = _mm512_maskz_min_ps(all, m, _mm512_maskz_shuffle_f32x4(all, m, m, _MM_SHUFFLE(2, 3, 0, 1)));
     m = _mm512_maskz_min_ps(all, m, _mm512_maskz_permute_ps(all, m, _MM_SHUFFLE(1, 0, 3, 2)));
@@ -116,7 +134,7 @@ inline unsigned compare(Lanes a, Lanes b) {
            unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a.hi, b.hi, P))) << 8;
 }
 inline Lanes mulUnfused(Lanes a, Lanes b) {
-    // FloatBits.h's unfused() is compiled outside this instruction set: its own barrier here.
+    // The barrier of unfused() (FloatBits.h) on both halves in one statement.
     __m256 lo = _mm256_mul_ps(a.lo, b.lo), hi = _mm256_mul_ps(a.hi, b.hi);
     __asm__("" : "+x"(lo), "+x"(hi));
     return {lo, hi};
@@ -139,7 +157,7 @@ inline Lanes keep(unsigned bits, Lanes a) {
     return {_mm256_blendv_ps(nan, a.lo, laneMask(bits & 0xffu)), _mm256_blendv_ps(nan, a.hi, laneMask(bits >> 8))};
 }
 inline float minimum(unsigned bits, Lanes a) {
-    const __m256 inf = _mm256_set1_ps(detail::kInfinity);
+    const __m256 inf = _mm256_set1_ps(kInfinity);
     __m256 m = _mm256_min_ps(_mm256_blendv_ps(inf, a.lo, laneMask(bits & 0xffu)),
                              _mm256_blendv_ps(inf, a.hi, laneMask(bits >> 8)));
     __m128 h = _mm_min_ps(_mm256_castps256_ps128(m), _mm256_extractf128_ps(m, 1));
@@ -187,7 +205,7 @@ inline Shear makeShear(const PacketRays &p, int kz) {
 /// edge function are left out and returned in `onEdge`, for the scalar test and its double
 /// fallback.
 template <bool Barycentrics, bool OrderingError>
-inline unsigned intersectAcrossRays(const Shear &r, const detail::PrimBlock &b, int lane, unsigned rays,
+inline unsigned intersectAcrossRays(const Shear &r, const PrimBlock &b, int lane, unsigned rays,
                                     const Lanes &tCap, float *tOut, float *b1Out, float *b2Out, float *tErrorOut,
                                     unsigned &onEdge) {
     const Lanes zero = Lanes::all(0.f);
@@ -211,7 +229,7 @@ inline unsigned intersectAcrossRays(const Shear &r, const detail::PrimBlock &b, 
     if (!candidates) return 0;
     const Lanes z0 = mulUnfused(r.sz, p0z), z1 = mulUnfused(r.sz, p1z), z2 = mulUnfused(r.sz, p2z);
     const Lanes tScaled = add(add(mulUnfused(e0, z0), mulUnfused(e1, z1)), mulUnfused(e2, z2));
-    const Lanes bound = mulUnfused(mul(tCap, Lanes::all(detail::kEarlyRejectSlack)), det);
+    const Lanes bound = mulUnfused(mul(tCap, Lanes::all(kEarlyRejectSlack)), det);
     const unsigned detNeg = compare<_CMP_LT_OQ>(det, zero), detPos = compare<_CMP_GT_OQ>(det, zero);
     candidates &= ~((detNeg & (compare<_CMP_GE_OQ>(tScaled, zero) | compare<_CMP_LT_OQ>(tScaled, bound))) |
                     (detPos & (compare<_CMP_LE_OQ>(tScaled, zero) | compare<_CMP_GT_OQ>(tScaled, bound))));
@@ -260,7 +278,7 @@ inline unsigned intersectAcrossRays(const Shear &r, const detail::PrimBlock &b, 
 /// Returns the rays whose result changed (closest hit) or that are occluded (any hit), with
 /// p.tCap and p.tHigh updated for them.
 template <bool AnyHit, class Bests>
-unsigned leafAcrossRays(uint32_t leaf, unsigned active, const detail::PrimBlock *blocks, const detail::PrimInfo *info,
+unsigned leafAcrossRays(uint32_t leaf, unsigned active, const PrimBlock *blocks, const PrimInfo *info,
                         const Shear *shears, unsigned shearLanes[3], PacketSetup &s, Bests &best) {
     PacketRays &p = s.p;
     const uint32_t first = WideLeaf::firstBlock(leaf), last = first + WideLeaf::blockCount(leaf);
@@ -272,7 +290,7 @@ unsigned leafAcrossRays(uint32_t leaf, unsigned active, const detail::PrimBlock 
         if (!rays) continue;
         const Shear &shear = shears[kz];
         for (uint32_t bi = first; bi < last; ++bi) {
-            const detail::PrimBlock &block = blocks[bi];
+            const PrimBlock &block = blocks[bi];
             for (unsigned lanes = unsigned(triangleLanes(block, s.query->layerMask)); lanes; lanes &= lanes - 1) {
                 const int lane = std::countr_zero(lanes);
                 unsigned onEdge = 0;
@@ -286,13 +304,13 @@ unsigned leafAcrossRays(uint32_t leaf, unsigned active, const detail::PrimBlock 
                         if (!c.acceptsPoint(ti)) return;
                         changed |= 1u << i;
                         rays &= ~(1u << i);
-                        p.tHigh[i] = -detail::kInfinity;
+                        p.tHigh[i] = -kInfinity;
                         return;
                     }
                     if (!best[i].offer(c, triangleCandidate(info[4 * bi + unsigned(lane)], ti, u, v), tErr)) return;
                     changed |= 1u << i;
                     p.tCap[i] = std::min(c.tMax, best[i].cap());
-                    p.tHigh[i] = p.tCap[i] * detail::kTraversalSlackUp;
+                    p.tHigh[i] = p.tCap[i] * kTraversalSlackUp;
                 };
                 for (; hits; hits &= hits - 1) {
                     const int i = std::countr_zero(hits);
@@ -302,7 +320,7 @@ unsigned leafAcrossRays(uint32_t leaf, unsigned active, const detail::PrimBlock 
                     const int i = std::countr_zero(onEdge);
                     s.context(i);
                     TriangleHit h;
-                    if (detail::watertightIntersect(*s.wrays[i], block.vertex(lane, 0), block.vertex(lane, 1),
+                    if (watertightIntersect(*s.wrays[i], block.vertex(lane, 0), block.vertex(lane, 1),
                                             block.vertex(lane, 2), p.tCap[i], h))
                         take(i, h.t, h.b1, h.b2, kUsesTError ? h.tError : 0.f);
                 }
@@ -321,14 +339,14 @@ unsigned leafAcrossRays(uint32_t leaf, unsigned active, const detail::PrimBlock 
 /// kept up to date. Flattened: the leaf test and the triangle kernel are inlined here, in this
 /// instruction set, instead of being called.
 template <bool AnyHit, class Bests>
-__attribute__((flatten)) unsigned walk(const detail::WideBvh &wide, unsigned lanes, const int near[3],
+__attribute__((flatten)) unsigned walk(const WideBvh &wide, unsigned lanes, const int near[3],
                                        const int far[3], const PacketConstants &k, const Shear *shears,
                                        unsigned shearLanes[3], PacketSetup &s, Bests &best) {
     PacketRays &p = s.p;
     const uint32_t layerMask = s.query->layerMask;
     const WideNode *nodes = wide.nodes.get();
-    const detail::PrimBlock *blocks = wide.blocks.get();
-    const detail::PrimInfo *info = wide.info.get();
+    const PrimBlock *blocks = wide.blocks.get();
+    const PrimInfo *info = wide.info.get();
     const Lanes ox = k.ox, oy = k.oy, oz = k.oz, ix = k.ix, iy = k.iy, iz = k.iz, fx = k.fx, fy = k.fy, fz = k.fz;
     const Lanes tLow = k.tLow;
     Lanes tHigh = Lanes::load(p.tHigh);
@@ -357,7 +375,7 @@ __attribute__((flatten)) unsigned walk(const detail::WideBvh &wide, unsigned lan
                 changed = true;
                 // An occluded ray is done: −∞ keeps it out of every box from now on.
                 p.tCap[i] = AnyHit ? c.tMax : std::min(c.tMax, best[i].cap());
-                p.tHigh[i] = AnyHit ? -detail::kInfinity : p.tCap[i] * detail::kTraversalSlackUp;
+                p.tHigh[i] = AnyHit ? -kInfinity : p.tCap[i] * kTraversalSlackUp;
             }
             if (changed) {
                 if (AnyHit && result == lanes) return result;
@@ -427,21 +445,21 @@ __attribute__((flatten)) unsigned walk(const detail::WideBvh &wide, unsigned lan
 /// every ray at once (the same IEEE operations as RayContext's, so the same values), the root box
 /// test (intersectBox lane by lane), then one walk per direction octant. Returns as walk().
 template <bool AnyHit, class Bests>
-unsigned tracePacket(const detail::WideBvh &wide, unsigned lanes, PacketSetup &s, Bests &best) {
+unsigned tracePacket(const WideBvh &wide, unsigned lanes, PacketSetup &s, Bests &best) {
     const RayQuery &q = *s.query;
     if (wide.blockCount == 0 || !(wide.rootMask & q.layerMask) || !lanes) return 0;
     PacketRays &p = s.p;
     PacketConstants k;
     k.ox = Lanes::load(p.ox), k.oy = Lanes::load(p.oy), k.oz = Lanes::load(p.oz);
-    const Lanes one = Lanes::all(1.f), farScale = Lanes::all(detail::kBoxFarScale);
+    const Lanes one = Lanes::all(1.f), farScale = Lanes::all(kBoxFarScale);
     k.ix = div(one, Lanes::load(p.dx)), k.iy = div(one, Lanes::load(p.dy)), k.iz = div(one, Lanes::load(p.dz));
     k.fx = mul(k.ix, farScale), k.fy = mul(k.iy, farScale), k.fz = mul(k.iz, farScale);
-    k.tLow = Lanes::all(q.tMin > 0.f ? q.tMin * detail::kTraversalSlackDown : 0.f);
+    k.tLow = Lanes::all(q.tMin > 0.f ? q.tMin * kTraversalSlackDown : 0.f);
     // Each ray's bounds, as its single-ray query would start them (s.tMax: the query's, or the
     // ray's own range of a per-ray anyHits()).
     for (int i = 0; i < kPacketLanes; ++i) {
         p.tCap[i] = s.tMax[i];
-        p.tHigh[i] = s.tMax[i] * detail::kTraversalSlackUp;
+        p.tHigh[i] = s.tMax[i] * kTraversalSlackUp;
     }
     // IEEE division keeps the sign of zero, so the sign of 1/d picks the slabs as in RayContext.
     const unsigned negative[3] = {signBits(k.ix), signBits(k.iy), signBits(k.iz)};
@@ -480,4 +498,5 @@ unsigned tracePacket(const detail::WideBvh &wide, unsigned lanes, PacketSetup &s
     return result;
 }
 
-} // namespace MVCL_PACKET_NS
+} // namespace MVCL_ISA_NAMESPACE
+} // namespace mvcl::detail

@@ -3,6 +3,8 @@
 // runs on four triangles at once (WatertightTriangle4.h) and a leaf is one or a few cache-line
 // aligned loads instead of a walk over 48-byte records.
 
+#include "KernelIsa.h"
+
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -17,7 +19,7 @@ struct alignas(32) PrimBlock {
     /// 4-wide triangle kernel also leaves them out.
     uint32_t triangleLayerBit[4];
 
-    glm::vec3 vertex(int lane, int k) const { return {v[k][0][lane], v[k][1][lane], v[k][2][lane]}; }
+    MVCL_KERNEL_INLINE glm::vec3 vertex(int lane, int k) const { return {v[k][0][lane], v[k][1][lane], v[k][2][lane]}; }
     void setVertex(int lane, int k, const glm::vec3 &p) {
         for (int axis = 0; axis < 3; ++axis) v[k][axis][lane] = p[axis];
     }

@@ -2,6 +2,8 @@
 // Private: per-ray constants of traversal and of the query's filters, computed once per query.
 // The triangle kernel's WatertightRay is made separately, once the ray enters the scene bounds.
 
+#include "KernelIsa.h"
+
 #include <mvcl/core/FloatBits.h>
 #include <mvcl/tracer/Ray.h>
 #include <mvcl/tracer/RayQuery.h>
@@ -74,9 +76,9 @@ struct RayContext {
     const RayQuery *query;
     bool hasClips;
 
-    RayContext(const Ray &r, const RayQuery &q) : RayContext(r, q, q.tMax) {}
+    MVCL_KERNEL_INLINE RayContext(const Ray &r, const RayQuery &q) : RayContext(r, q, q.tMax) {}
     /// The query with its range ending at `rangeEnd` instead of q.tMax (a shadow ray's own length).
-    RayContext(const Ray &r, const RayQuery &q, float rangeEnd)
+    MVCL_KERNEL_INLINE RayContext(const Ray &r, const RayQuery &q, float rangeEnd)
         : ray(r), tMin(q.tMin), tMax(rangeEnd), layerMask(q.layerMask), query(&q),
           hasClips(q.clipCount() > 0) {
 #if defined(__SSE2__)
@@ -102,8 +104,13 @@ struct RayContext {
     }
 
     /// The query's t-range test, applied to every candidate (never by the box test).
-    bool acceptsT(float t) const { return t > 0.f && t >= tMin && t <= tMax && t < kInfinity; }
-    bool acceptsPoint(float t) const { return !hasClips || query->acceptsPoint(ray.at(t)); }
+    MVCL_KERNEL_INLINE bool acceptsT(float t) const { return t > 0.f && t >= tMin && t <= tMax && t < kInfinity; }
+    MVCL_KERNEL_INLINE bool acceptsPoint(float t) const { return !hasClips || clipsAccept(t); }
+    /// The query's clip volumes at the point at t. Out of line, in baseline code (RayContext.cpp):
+    /// the kernels of every instruction set call this one copy instead of each compiling the
+    /// public headers' inline clip tests, which they could then share (KernelIsa.h). Only
+    /// queries with clip volumes pay for the call.
+    bool clipsAccept(float t) const;
 };
 
 } // namespace mvcl::detail

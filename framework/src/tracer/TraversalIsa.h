@@ -2,7 +2,8 @@
 // Private: which compiled variant of the wide-BVH traversal a Tracer uses (WideTraversal.inl).
 // A Tracer picks AVX2 when the CPU has it; tests force the SSE baseline to check that both give
 // bit-identical results. Packets likewise: AVX-512 or AVX2, limited by tests to check each. The
-// BVH build's binning too: AVX2 or SSE2, which must build the same tree.
+// BVH build's binning too: AVX2 or SSE2, which must build the same tree. The choice itself is made
+// in KernelDispatch.cpp, among the tables of KernelTables.h.
 
 namespace mvcl::detail {
 

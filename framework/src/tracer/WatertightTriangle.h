@@ -2,6 +2,8 @@
 // Private: the watertight ray/triangle kernel shared by intersectTriangle() and the tracer, so
 // that the public test, the BVH and the brute-force oracle run literally the same arithmetic.
 
+#include "KernelIsa.h"
+
 #include <mvcl/core/FloatBits.h>
 #include <mvcl/tracer/TriangleIntersection.h>
 
@@ -16,6 +18,9 @@ namespace mvcl::detail {
 /// must never reject a triangle whose final t would pass. 2^-20 is ~8 ulps, far above the ~3 ulps
 /// the product and the division can differ by.
 inline constexpr float kEarlyRejectSlack = 1.f + 1.f / 1048576.f;
+
+// Compiled into every kernel unit: one copy per instruction set (KernelIsa.h).
+inline namespace MVCL_ISA_NAMESPACE {
 
 /// Woop–Benthin–Wald watertight test, pbrt-v4 variant (shapes.cpp IntersectTriangle). Returns the
 /// hit with t > 0 guaranteed (conservative t > δt) and t ≤ tMax (up to the slack above: callers
@@ -114,4 +119,5 @@ inline bool watertightIntersect(const WatertightRay &r, const glm::vec3 &p0, con
     return true;
 }
 
+} // namespace MVCL_ISA_NAMESPACE
 } // namespace mvcl::detail

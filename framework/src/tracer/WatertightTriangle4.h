@@ -6,6 +6,7 @@
 // t and barycentrics are bit-identical to watertightIntersect(). Lanes where an edge function
 // is zero are handed to watertightIntersect() itself for its exact double-precision fallback.
 
+#include "KernelIsa.h"
 #include "PrimBlock.h"
 #include "WatertightTriangle.h"
 
@@ -19,12 +20,6 @@
 #endif
 
 namespace mvcl::detail {
-
-#if defined(__SSE2__)
-/// _mm_mul_ps rounded on its own: GCC and clang implement it as a plain vector product, which
-/// -ffp-contract=fast would fuse with the following _mm_add_ps (see unfused() in FloatBits.h).
-inline __m128 mulUnfused4(__m128 a, __m128 b) { return unfused(_mm_mul_ps(a, b)); }
-#endif
 
 struct TriangleHit4 {
     alignas(16) float t[4];
@@ -41,14 +36,23 @@ struct WatertightRay4 {
     __m128 ox, oy, oz; ///< origin, permuted like the ray
     __m128 sx, sy, sz;
 
-    explicit WatertightRay4(const WatertightRay &r)
+    MVCL_KERNEL_INLINE explicit WatertightRay4(const WatertightRay &r)
         : ray(r), ox(_mm_set1_ps(r.origin[r.kx])), oy(_mm_set1_ps(r.origin[r.ky])),
           oz(_mm_set1_ps(r.origin[r.kz])), sx(_mm_set1_ps(r.sx)), sy(_mm_set1_ps(r.sy)),
           sz(_mm_set1_ps(r.sz)) {}
 #else
-    explicit WatertightRay4(const WatertightRay &r) : ray(r) {}
+    MVCL_KERNEL_INLINE explicit WatertightRay4(const WatertightRay &r) : ray(r) {}
 #endif
 };
+
+// The kernel itself: one copy per instruction set that compiles it (KernelIsa.h).
+inline namespace MVCL_ISA_NAMESPACE {
+
+#if defined(__SSE2__)
+/// _mm_mul_ps rounded on its own: GCC and clang implement it as a plain vector product, which
+/// -ffp-contract=fast would fuse with the following _mm_add_ps (see unfused() in FloatBits.h).
+inline __m128 mulUnfused4(__m128 a, __m128 b) { return unfused(_mm_mul_ps(a, b)); }
+#endif
 
 /// Tests the lanes set in `lanes` (bit i = lane i) against the ray; returns the bits of the lanes
 /// hit with their results in `hit`. tMax plays the same role as in watertightIntersect().
@@ -189,4 +193,5 @@ inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, in
     return hits;
 }
 
+} // namespace MVCL_ISA_NAMESPACE
 } // namespace mvcl::detail

@@ -5,6 +5,7 @@
 // dependent chain of node loads that dominates traversal. Leaves point at PrimBlocks.
 
 #include "Bvh.h"
+#include "KernelIsa.h"
 #include "PrimBlock.h"
 
 #include <cstddef>
@@ -16,6 +17,11 @@ namespace mvcl::detail {
 
 /// Children per node.
 inline constexpr int kWidth = 8;
+
+/// Traversal stack entries. The binary build bounds the depth (SAH up to 64 levels, then
+/// object-median splits of at most 28 more); a wide node pushes at most kWidth − 1 entries and
+/// spans at least one binary level, so 7 · 92 < 660 cannot overflow.
+inline constexpr int kStackSize = 660;
 
 /// 256 bytes (four cache lines). Lane i describes child i; an empty lane has an empty box and a
 /// zero layer mask so no query ever enters it. Float boxes on purpose: 8-bit quantised boxes
@@ -39,10 +45,10 @@ struct WideLeaf {
     static uint32_t encode(uint32_t firstBlock, uint32_t blockCount, bool hasSpheres) {
         return (blockCount << kCountShift) | (firstBlock << 1) | uint32_t(hasSpheres);
     }
-    static bool isLeaf(uint32_t ref) { return (ref >> kCountShift) != 0; }
-    static uint32_t blockCount(uint32_t ref) { return ref >> kCountShift; }
-    static uint32_t firstBlock(uint32_t ref) { return (ref & ((1u << kCountShift) - 1u)) >> 1; }
-    static bool hasSpheres(uint32_t ref) { return ref & 1u; }
+    static MVCL_KERNEL_INLINE bool isLeaf(uint32_t ref) { return (ref >> kCountShift) != 0; }
+    static MVCL_KERNEL_INLINE uint32_t blockCount(uint32_t ref) { return ref >> kCountShift; }
+    static MVCL_KERNEL_INLINE uint32_t firstBlock(uint32_t ref) { return (ref & ((1u << kCountShift) - 1u)) >> 1; }
+    static MVCL_KERNEL_INLINE bool hasSpheres(uint32_t ref) { return ref & 1u; }
 };
 
 struct WideBvh {

@@ -1,18 +1,38 @@
-// Private: the wide-BVH traversal loop, included twice by Tracer.cpp: once as namespace `sse`
-// (two 4-lane halves per node, the baseline of every x86-64 CPU) and once as namespace `avx2`
-// inside a `#pragma GCC target("avx2")` region (all eight lanes in one 256-bit test), chosen at
-// run time. No include guard on purpose. Both node tests do the same IEEE min/max/sub/mul per
-// lane as the scalar intersectBox(), so the two variants visit the same nodes and return
-// bit-identical hits (the tests force each and compare).
-//
-// Expects MVCL_TRAVERSAL_NS (the namespace) and MVCL_TRAVERSAL_AVX2 (0 or 1), and the helpers of
-// Tracer.cpp (intersectBox, testLeaf, RayContext) to be visible.
+#pragma once
+// Private: the wide-BVH traversal loop, compiled by two translation units: TraversalSse2.cpp
+// (MVCL_TRAVERSAL_AVX2 0: two 4-lane SSE halves per node, the baseline of every x86-64 CPU) and
+// TraversalAvx2.cpp (MVCL_TRAVERSAL_AVX2 1, built with -mavx2: all eight lanes in one 256-bit
+// test). Each exports the loop as a table (KernelTables.h) and a Tracer picks one at run time.
+// Both node tests do the same IEEE min/max/sub/mul per lane as the scalar intersectBox(), so the
+// two variants visit the same nodes and return bit-identical hits (the tests force each and
+// compare). Everything here lands in the unit's own namespace (KernelIsa.h).
 
-namespace MVCL_TRAVERSAL_NS {
+#include "KernelIsa.h"
+#include "LeafIntersection.h"
+#include "NearestHit.h"
+#include "RayContext.h"
+#include "WatertightTriangle4.h"
+#include "WideBvh.h"
 
-using detail::kWidth;
-using detail::WideLeaf;
-using detail::WideNode;
+#include <mvcl/tracer/TriangleIntersection.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <utility>
+
+#if !defined(MVCL_TRAVERSAL_AVX2)
+#error "the including unit chooses the variant: MVCL_TRAVERSAL_AVX2 0 or 1"
+#endif
+
+#if MVCL_TRAVERSAL_AVX2
+#include <immintrin.h>
+#elif defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace mvcl::detail {
+inline namespace MVCL_ISA_NAMESPACE {
 
 /// The per-ray constants of intersectNode(), broadcast once per query.
 struct NodeRay {
@@ -132,13 +152,13 @@ inline int intersectNode(const WideNode &n, const NodeRay &r, float tHigh, float
 /// Any-hit traversal. Any hit ends the query and tHigh never shrinks, so the children are not
 /// ordered and the stack holds bare references: every pushed child already passed
 /// tNear <= tHigh, so popping needs no distance test either.
-inline bool occluded(const detail::WideBvh &wide, const RayContext &c, float tHigh,
-                     detail::NearestHit &unused) {
+inline bool occluded(const WideBvh &wide, const RayContext &c, float tHigh,
+                     NearestHit &unused) {
     const WideNode *nodes = wide.nodes.get();
-    const detail::PrimBlock *blocks = wide.blocks.get();
-    const detail::PrimInfo *info = wide.info.get();
+    const PrimBlock *blocks = wide.blocks.get();
+    const PrimInfo *info = wide.info.get();
     const WatertightRay wray(c.ray);
-    const detail::WatertightRay4 wray4(wray);
+    const WatertightRay4 wray4(wray);
     const NodeRay nodeRay(c);
     // Pairs are only taken while sp <= kStackSize - 2·kWidth, so above that mark the stack only
     // grows by the one-node steps, a plain depth-first descent: at most 7 entries per level
@@ -215,12 +235,12 @@ inline bool occluded(const detail::WideBvh &wide, const RayContext &c, float tHi
 /// and returns whether it changed) or any hit (returns true on the first accepted hit; after the
 /// root box, handed to occluded()) over the wide BVH.
 template <bool AnyHit, class Best>
-bool traverse(const detail::WideBvh &wide, const RayContext &c, Best &best) {
+bool traverse(const WideBvh &wide, const RayContext &c, Best &best) {
     if (wide.blockCount == 0) return false;
     const WideNode *nodes = wide.nodes.get();
-    const detail::PrimBlock *blocks = wide.blocks.get();
-    const detail::PrimInfo *info = wide.info.get();
-    float tHigh = c.tMax * detail::kTraversalSlackUp;
+    const PrimBlock *blocks = wide.blocks.get();
+    const PrimInfo *info = wide.info.get();
+    float tHigh = c.tMax * kTraversalSlackUp;
     float tEntry;
     if (!(wide.rootMask & c.layerMask) || !intersectBox(wide.rootBounds, c, tHigh, tEntry))
         return false;
@@ -229,7 +249,7 @@ bool traverse(const detail::WideBvh &wide, const RayContext &c, Best &best) {
     } else {
     // Only now: many rays miss the scene bounds, and the shear costs three divisions.
     const WatertightRay wray(c.ray);
-    const detail::WatertightRay4 wray4(wray);
+    const WatertightRay4 wray4(wray);
     const NodeRay nodeRay(c);
 
     struct Entry {
@@ -260,7 +280,7 @@ bool traverse(const detail::WideBvh &wide, const RayContext &c, Best &best) {
             if (testLeaf<AnyHit>(cur, blocks, info, c, wray4, best)) {
                 if (AnyHit) return true;
                 found = true;
-                tHigh = std::min(c.tMax, best.cap()) * detail::kTraversalSlackUp;
+                tHigh = std::min(c.tMax, best.cap()) * kTraversalSlackUp;
             }
         } else if (sp > 0 && sp <= kStackSize - 2 * kWidth && !WideLeaf::isLeaf(stack[sp - 1].ref) &&
                    stack[sp - 1].t <= tHigh) {
@@ -321,4 +341,5 @@ bool traverse(const detail::WideBvh &wide, const RayContext &c, Best &best) {
     }
 }
 
-} // namespace MVCL_TRAVERSAL_NS
+} // namespace MVCL_ISA_NAMESPACE
+} // namespace mvcl::detail

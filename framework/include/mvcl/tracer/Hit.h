@@ -22,7 +22,12 @@ struct Hit {
     bool isValid() const { return geometry != ~0u; }
 };
 
-/// True if a should win over b (same t order with the deterministic tie-break).
+/// True if a should win over b (same t order with the deterministic tie-break). Always inlined
+/// (GCC, clang): the tracer's kernels, compiled once per instruction set, call it, and must not
+/// end up sharing one out-of-line copy.
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
 inline bool hitPrecedes(const Hit &a, const Hit &b) {
     if (a.t != b.t) return a.t < b.t;
     if (a.layer != b.layer) return a.layer < b.layer;

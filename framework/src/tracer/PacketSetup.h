@@ -1,0 +1,104 @@
+#pragma once
+// Private: what a packet query hands to the packet walk of its instruction set (KernelTables.h):
+// the rays in lanes with each ray's context made on demand, and the rays' closest-hit states. One
+// type for every instruction set: the members the walk calls are MVCL_KERNEL_INLINE (KernelIsa.h).
+
+#include "KernelIsa.h"
+#include "NearestHit.h"
+#include "PacketRays.h"
+#include "RayContext.h"
+#include "WatertightTriangle4.h"
+
+#include <mvcl/tracer/Ray.h>
+#include <mvcl/tracer/RayQuery.h>
+#include <mvcl/tracer/TriangleIntersection.h>
+
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <new>
+#include <span>
+#include <type_traits>
+
+namespace mvcl::detail {
+
+/// Storage for a T made later with placement new, left uninitialised until then: arrays of
+/// std::optional are zeroed when the struct holding them is made, which cost packet queries
+/// as much as their walk. Only for trivially destructible T (never destroyed).
+template <class T>
+union Slot {
+    static_assert(std::is_trivially_destructible_v<T>);
+    Slot() {}
+    T value;
+};
+
+/// A packet query's rays: their origins and directions in lanes, and each ray's context and
+/// triangle-kernel constants, made when the ray first reaches a leaf (most rays of a tile that
+/// misses the model never do).
+struct PacketSetup {
+    const Ray *rays = nullptr;
+    const RayQuery *query = nullptr;
+    /// Each ray's upper bound: the query's, or min(query.tMax, tMax[i]) for anyHits() with
+    /// per-ray ranges (the expression a single query with that tMax would hold).
+    float tMax[kPacketLanes];
+    unsigned valid = 0; ///< rays with a valid query
+    unsigned built = 0; ///< rays whose context exists
+    unsigned dominantAxisLanes[3] = {}; ///< rays by WatertightRay::kz (the largest |direction| axis)
+    PacketRays p;
+    Slot<RayContext> contexts[kPacketLanes];
+    Slot<WatertightRay> wrayStorage[kPacketLanes];
+    Slot<WatertightRay4> wray4s[kPacketLanes];
+    // Set by context(i), read only after it.
+    const WatertightRay4 *wray4[kPacketLanes];
+    const WatertightRay *wrays[kPacketLanes];
+
+    /// `rayTMax`: null, or each ray's own upper bound (see tMax). Made by Tracer (baseline code)
+    /// only; the walks call context().
+    PacketSetup(std::span<const Ray> r, const RayQuery &q, const float *rayTMax = nullptr)
+        : rays(r.data()), query(&q) {
+        for (int i = 0; i < kPacketLanes; ++i) {
+            const bool inPacket = std::size_t(i) < r.size();
+            tMax[i] = inPacket && rayTMax ? std::min(q.tMax, rayTMax[i]) : q.tMax;
+            // Lanes without a valid ray get harmless constants; no walk ever reads them.
+            const bool ok = inPacket && isValidQuery(r[std::size_t(i)], q.tMin, tMax[i]);
+            valid |= unsigned(ok) << i;
+            const Ray &ray = ok ? r[std::size_t(i)] : Ray{glm::vec3(0.f), glm::vec3(1.f)};
+            p.ox[i] = ray.origin.x, p.oy[i] = ray.origin.y, p.oz[i] = ray.origin.z;
+            p.dx[i] = ray.direction.x, p.dy[i] = ray.direction.y, p.dz[i] = ray.direction.z;
+            // WatertightRay's choice, ties to the lower axis.
+            const float ax = std::fabs(ray.direction.x), ay = std::fabs(ray.direction.y), az = std::fabs(ray.direction.z);
+            const int kz = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
+            dominantAxisLanes[kz] |= unsigned(ok) << i;
+        }
+    }
+    PacketSetup(const PacketSetup &) = delete;
+    PacketSetup &operator=(const PacketSetup &) = delete;
+
+    MVCL_KERNEL_INLINE const RayContext &context(int i) {
+        if (!((built >> i) & 1u)) {
+            new (&contexts[i].value) RayContext(rays[i], *query, tMax[i]);
+            wrays[i] = new (&wrayStorage[i].value) WatertightRay(rays[i]);
+            wray4[i] = new (&wray4s[i].value) WatertightRay4(*wrays[i]);
+            built |= 1u << i;
+        }
+        return contexts[i].value;
+    }
+};
+
+/// The closest-hit states of a packet's rays, made in place (LayerPriorityHit takes an argument)
+/// by the caller of the walk.
+template <class Best>
+struct PacketBests {
+    Slot<Best> slot[kPacketLanes]; ///< made for the valid rays only
+    MVCL_KERNEL_INLINE Best &operator[](int i) { return slot[i].value; }
+};
+
+/// Any-hit queries need a Best only for the type: one shared, never read.
+struct UnusedBests {
+    NearestHit unused;
+    MVCL_KERNEL_INLINE NearestHit &operator[](int) { return unused; }
+};
+
+} // namespace mvcl::detail

@@ -1,0 +1,13 @@
+// RayContext's clip test, out of line on purpose (RayContext.h): one baseline copy for the
+// kernels of every instruction set.
+
+#include "RayContext.h"
+
+#include <mvcl/tracer/Ray.h>
+#include <mvcl/tracer/RayQuery.h>
+
+namespace mvcl::detail {
+
+bool RayContext::clipsAccept(float t) const { return query->acceptsPoint(ray.at(t)); }
+
+} // namespace mvcl::detail

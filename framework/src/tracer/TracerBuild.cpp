@@ -1,0 +1,150 @@
+// Tracer's construction: the scene's triangles, spheres and planes as primitive records (invalid
+// ones left out), then the BVH and its collapse to the wide tree the queries walk.
+
+#include "TracerPrivate.h"
+
+#include "Bvh.h"
+#include "WideBvh.h"
+
+#include <mvcl/core/WorkerPool.h>
+#include <mvcl/model/Scene.h>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace mvcl {
+
+using detail::PrimKind;
+using detail::PrimRecord;
+
+namespace {
+
+bool isFinite(const glm::vec3 &v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+/// Zero-area test in double: float cross products underflow for tiny but valid triangles.
+bool isDegenerate(const glm::vec3 &p0, const glm::vec3 &p1, const glm::vec3 &p2) {
+    const glm::dvec3 e1 = glm::dvec3(p1) - glm::dvec3(p0);
+    const glm::dvec3 e2 = glm::dvec3(p2) - glm::dvec3(p0);
+    const glm::dvec3 n(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
+                       e1.x * e2.y - e1.y * e2.x);
+    return n.x == 0.0 && n.y == 0.0 && n.z == 0.0;
+}
+
+uint8_t clampLayer(int layer) { return uint8_t(std::clamp(layer, 0, kMaxLayers - 1)); }
+
+} // namespace
+
+Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
+    : d(std::make_unique<Private>(scene, settings)) {
+    const auto start = std::chrono::steady_clock::now();
+
+    const int threads = settings.buildThreads > 0 ? settings.buildThreads : workerThreadCount();
+    detail::BvhBuildInput input;
+    input.threads = threads;
+    // Triangles in chunks of at most kChunk of one mesh: a parallel pass counts each chunk's
+    // valid triangles, a prefix sum places the chunks, a second parallel pass writes them, so
+    // the records come out in mesh and index order whatever the thread count.
+    struct Chunk {
+        uint32_t mesh, begin, end;
+        std::size_t valid = 0, offset = 0;
+    };
+    constexpr uint32_t kChunk = 16384;
+    std::vector<Chunk> chunks;
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        const std::size_t count = scene.meshes[m].indices.size();
+        for (std::size_t b = 0; b < count; b += kChunk)
+            chunks.push_back(Chunk{uint32_t(m), uint32_t(b), uint32_t(std::min<std::size_t>(count, b + kChunk))});
+    }
+    // Calls emit(index, p0, p1, p2) for every valid triangle of the chunk, in order.
+    auto forValid = [&scene](const Chunk &ch, auto &&emit) {
+        const TriangleMesh &mesh = scene.meshes[ch.mesh];
+        const std::size_t nv = mesh.positions.size();
+        for (uint32_t i = ch.begin; i < ch.end; ++i) {
+            const glm::uvec3 &tri = mesh.indices[i];
+            if (tri.x >= nv || tri.y >= nv || tri.z >= nv) continue;
+            const glm::vec3 &p0 = mesh.positions[tri.x];
+            const glm::vec3 &p1 = mesh.positions[tri.y];
+            const glm::vec3 &p2 = mesh.positions[tri.z];
+            if (!isFinite(p0) || !isFinite(p1) || !isFinite(p2) || isDegenerate(p0, p1, p2))
+                continue;
+            emit(i, p0, p1, p2);
+        }
+    };
+    parallelFor(chunks.size(), threads, [&](std::size_t c) {
+        forValid(chunks[c], [&](uint32_t, const glm::vec3 &, const glm::vec3 &, const glm::vec3 &) {
+            ++chunks[c].valid;
+        });
+    });
+    std::size_t triangles = 0;
+    for (Chunk &ch : chunks) {
+        ch.offset = triangles;
+        triangles += ch.valid;
+    }
+    std::vector<uint32_t> validSpheres;
+    for (std::size_t s = 0; s < scene.spheres.size(); ++s) {
+        const Sphere &sp = scene.spheres[s];
+        if (isFinite(sp.center) && std::isfinite(sp.radius) && sp.radius > 0.f)
+            validSpheres.push_back(uint32_t(s));
+    }
+    input.prims.allocate(triangles + validSpheres.size());
+    parallelFor(chunks.size(), threads, [&](std::size_t c) {
+        const Chunk &ch = chunks[c];
+        const uint8_t layer = clampLayer(scene.meshes[ch.mesh].layer);
+        std::size_t out = ch.offset;
+        forValid(ch, [&](uint32_t i, const glm::vec3 &p0, const glm::vec3 &p1, const glm::vec3 &p2) {
+            input.prims[out++] = PrimRecord{p0, p1, p2, ch.mesh, i, uint8_t(PrimKind::Triangle), layer, 0};
+        });
+    });
+    d->stats.triangles = triangles;
+    for (std::size_t k = 0; k < validSpheres.size(); ++k) {
+        const Sphere &sp = scene.spheres[validSpheres[k]];
+        input.prims[triangles + k] =
+            PrimRecord{sp.center, glm::vec3(sp.radius, 0.f, 0.f), glm::vec3(0.f), validSpheres[k],
+                       0, uint8_t(PrimKind::Sphere), clampLayer(sp.layer), 0};
+    }
+    d->stats.spheres = validSpheres.size();
+    for (std::size_t p = 0; p < scene.planes.size(); ++p) {
+        const Plane &pl = scene.planes[p];
+        const float len = glm::length(pl.normal);
+        if (!isFinite(pl.normal) || !std::isfinite(pl.offset) || !(len > 0.f)) continue;
+        // Normalised so that t and the error bounds do not depend on how the plane was written.
+        d->planes.push_back(
+            detail::PlaneRecord{pl.normal / len, pl.offset / len, uint32_t(p), clampLayer(pl.layer)});
+    }
+    d->stats.planes = d->planes.size();
+    for (const Chunk &ch : chunks)
+        if (ch.valid) d->layers |= 1u << clampLayer(scene.meshes[ch.mesh].layer);
+    for (const uint32_t s : validSpheres) d->layers |= 1u << clampLayer(scene.spheres[s].layer);
+    for (const detail::PlaneRecord &pl : d->planes) d->layers |= 1u << pl.layer;
+    if (scene.layerContact.isEnabled()) d->contactDistance = scene.layerContact.sceneUnits(scene.bounds());
+
+    input.maxLeafSize = settings.maxLeafSize;
+    {
+        const detail::Bvh bvh = detail::buildBvh(std::move(input));
+        d->wide = detail::collapseToWide(bvh, threads);
+        d->stats.leaves = bvh.leafCount;
+        d->stats.maxDepth = bvh.maxDepth;
+    }
+    d->stats.nodes = d->wide.nodeCount;
+    d->stats.memoryBytes = d->wide.nodeCount * sizeof(detail::WideNode) +
+                           d->wide.blockCount * sizeof(detail::PrimBlock) +
+                           4 * d->wide.blockCount * sizeof(detail::PrimInfo) +
+                           d->planes.size() * sizeof(detail::PlaneRecord);
+    d->stats.buildMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+Tracer::~Tracer() = default;
+
+} // namespace mvcl
