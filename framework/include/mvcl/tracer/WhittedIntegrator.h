@@ -72,6 +72,10 @@ public:
                           std::span<glm::vec3> radiance) const;
 
 private:
+    /// Hard ceiling on recursion whatever a policy asks for: keeps the stack bounded (facing
+    /// mirrors).
+    static constexpr int kDepthCeiling = 64;
+
     struct ShadingPoint;
     struct LightAnswer;
     struct SecondaryRays;
