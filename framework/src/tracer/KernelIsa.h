@@ -34,12 +34,20 @@
 
 // Where the compiler inlines little (-O0, -Os), small inline functions of the standard library
 // and GLM that every kernel calls (std::unique_ptr::get, glm's operator[]) are emitted out of
-// line in every unit, outside any kernel namespace, and could not be kept apart. Such builds
-// compile no extension kernels: those units give null tables and the baseline runs
-// (KernelDispatch.cpp). The compiler does not tell -Og and -O1 apart from faster levels; with
-// GCC 12 and clang 14, sanitizers or not, they keep the units apart, and IsaSymbols.* would
-// report it if that changed.
-#if defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
+// line in every unit, outside any kernel namespace, and could not be kept apart. So are they in
+// the sanitizer builds (clang -O1 with ASan and UBSan and assertions on: glm's operator[] keeps
+// its assertion and is not inlined; seen in IsaSymbols.* there). Such builds compile no extension
+// kernels: those units give null tables and the baseline runs (KernelDispatch.cpp). The compiler
+// does not tell -Og and -O1 apart from faster levels; IsaSymbols.* reports it if a build at
+// those levels shares code between units.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define MVCL_KERNELS_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define MVCL_KERNELS_SANITIZED 1
+#endif
+#endif
+#if defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__) && !defined(MVCL_KERNELS_SANITIZED)
 #define MVCL_EXTENSION_KERNELS 1
 #else
 #define MVCL_EXTENSION_KERNELS 0
