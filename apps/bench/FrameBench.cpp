@@ -28,7 +28,7 @@ namespace mvcl::bench {
 namespace {
 
 struct FrameOptions {
-    std::string source = "builtin:cube-in-cube";
+    std::string source; ///< empty: the session file's scene, else the default scene
     std::string sessionFile;
     int width = 500;
     int height = 500;
@@ -47,7 +47,9 @@ std::optional<FrameOptions> parseFrameOptions(int argc, char **argv) {
                  "mvcl-bench frame");
     app.formatter(std::make_shared<cli::UsageFormatter>(kFrameUsage));
     app.set_help_flag("-h,--help", "this text");
-    app.add_option("model", o.source, "model file or builtin:NAME (default builtin:cube-in-cube)")->option_text(" ");
+    app.add_option("model", o.source, "model file or builtin:NAME (default: the --lenses file's scene, else "
+                                      "builtin:cube-in-cube)")
+        ->option_text(" ");
     app.add_option("--lenses", o.sessionFile, "lens-stack file, as mvcl-render --lenses (its scene unless one is given)")
         ->type_name("FILE");
     cli::addImageSizeOption(app, o.width, o.height, "image size (default 500x500)");
@@ -81,7 +83,7 @@ int runFrameBench(int argc, char **argv) {
         for (const Error &skipped : registry.loadModules(LensRegistry::defaultSearchPath()))
             std::fprintf(stderr, "mvcl-bench: warning: plugin skipped: %s\n", skipped.what());
         ViewRequest request;
-        request.source = o.sessionFile.empty() || o.source != "builtin:cube-in-cube" ? o.source : "";
+        request.source = o.source.empty() && o.sessionFile.empty() ? "builtin:cube-in-cube" : o.source;
         request.sessionFile = o.sessionFile;
         const ViewSetup setup = ViewSetup::prepare(request, registry);
         const Scene scene = loadScene(setup.source, setup.loadOptions);
