@@ -16,6 +16,7 @@ if(NOT NM OR NOT OBJECTS)
     message(FATAL_ERROR "usage: cmake -DNM=<nm> \"-DOBJECTS=<object>|<object>|...\" -P CheckIsaSymbols.cmake")
 endif()
 string(REPLACE "|" ";" objects "${OBJECTS}")
+include(${CMAKE_CURRENT_LIST_DIR}/../NmListing.cmake)
 
 # Weak definitions of code, as nm prints them: W. Weak data (V: typeinfo, vtables, a function's
 # static variables) does not depend on the instruction set; a vtable's functions are checked as
@@ -24,13 +25,7 @@ set(weak_regex "^[0-9a-fA-F]* +W ([^ ]+)$")
 set(startup_regex "_GLOBAL__sub_I_|_GLOBAL__I_|__cxx_global_var_init")
 
 function(weak_symbols object out_var)
-    execute_process(COMMAND ${NM} --defined-only ${object}
-        OUTPUT_VARIABLE listing ERROR_VARIABLE problem RESULT_VARIABLE status)
-    if(NOT status EQUAL 0)
-        message(FATAL_ERROR "${object}: nm failed (${status}): ${problem}")
-    endif()
-    string(REPLACE ";" "\\;" listing "${listing}")
-    string(REPLACE "\n" ";" lines "${listing}")
+    nm_lines(lines ${object} --defined-only)
     set(weak)
     set(startup)
     foreach(line IN LISTS lines)
