@@ -33,9 +33,15 @@ constexpr double kR2b = 0.56984029099805326591;
 
 glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed) {
     if (k == 0) return {0.5f, 0.5f};
-    const uint32_t key = hash32(uint32_t(y) * 0x9e3779b1u ^ uint32_t(x) ^ hash32(seed));
-    const double u = 0.5 + unitDouble(key) + double(k) * kR2a;
-    const double v = 0.5 + unitDouble(hash32(key)) + double(k) * kR2b;
+    // The even and the odd samples are two R2 sequences (point k / 2 of each) under rotations
+    // drawn independently: two independent half-images, whose difference estimates the error
+    // of their mean (PixelSamples::relativeMse). Interleaved points of one sequence would not
+    // do: they cancel each other's errors, and the estimate came out up to 5× too high.
+    uint32_t key = hash32(uint32_t(y) * 0x9e3779b1u ^ uint32_t(x) ^ hash32(seed));
+    if (k & 1u) key = hash32(key ^ 0x5bd1e995u);
+    const uint32_t point = k >> 1;
+    const double u = 0.5 + unitDouble(key) + double(point) * kR2a;
+    const double v = 0.5 + unitDouble(hash32(key)) + double(point) * kR2b;
     // Rounded to float once; the largest float below 1 keeps the sample inside the pixel.
     const float below1 = 0x1.fffffep-1f;
     return {std::min(float(u - std::floor(u)), below1), std::min(float(v - std::floor(v)), below1)};
@@ -47,6 +53,16 @@ float PixelSamples::relativeError() const {
     const glm::vec3 even = evenSum / float((count + 1) / 2);
     const glm::vec3 d = glm::abs(all - even);
     return (d.x + d.y + d.z) / std::sqrt(1e-4f + std::max(all.x + all.y + all.z, 0.f));
+}
+
+float PixelSamples::relativeMse() const {
+    if (count < 2) return 0.f;
+    const float evens = float((count + 1) / 2), odds = float(count / 2), n = float(count);
+    const glm::vec3 all = sum / n;
+    const glm::vec3 d = evenSum / evens - (sum - evenSum) / odds;
+    const glm::vec3 variance = d * d * (evens * odds / (n * n));
+    const glm::vec3 relative = variance / (all * all + 0.01f);
+    return (relative.x + relative.y + relative.z) / 3.f;
 }
 
 PixelTracer::PixelTracer(const WhittedIntegrator &integrator, const Camera &camera, const PolicyMap &map,
@@ -107,17 +123,20 @@ void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &sam
             if ((k & 1u) == 0) samples.evenSum += value;
         }
         m_costs[index].rays += m_rays.total() - raysBefore;
+        samples.rays += uint32_t(m_rays.total() - raysBefore);
         ++m_costs[index].pixels;
         m_samples += endSample - samples.count;
         samples.count = endSample;
         return;
     }
     // A feathered edge: each sample blends every term at the same position.
+    const uint64_t raysBefore = m_rays.total();
     for (uint32_t k = samples.count; k < endSample; ++k) {
         const glm::vec3 value = traceTerms(x, y, pixel + sampleOffset(x, y, k, m_seed));
         samples.sum += value;
         if ((k & 1u) == 0) samples.evenSum += value;
     }
+    samples.rays += uint32_t(m_rays.total() - raysBefore);
     for (const PolicyTerm &term : terms) ++m_costs[term.policy].pixels;
     m_samples += uint64_t(endSample - samples.count) * terms.size();
     samples.count = endSample;
@@ -167,6 +186,7 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
     std::array<Hit, Tracer::kPacketSize> hits;
     std::array<int, Tracer::kPacketSize> pixelOf;
     std::array<glm::vec3, Tracer::kPacketSize> values;
+    std::array<RayCounters, Tracer::kPacketSize> laneRays;
     // Sample by sample: each pixel's sums still add its samples in order k = count, count + 1, …
     for (uint32_t k = first; k < last; ++k) {
         int lanes = 0;
@@ -186,13 +206,16 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
             pixelOf[size_t(lanes++)] = i;
         }
         const uint32_t found = tracer.closestHits({rays.data(), size_t(lanes)}, query, {hits.data(), size_t(lanes)});
+        std::fill_n(laneRays.begin(), lanes, RayCounters{});
         m_integrator.radianceFromHits({rays.data(), size_t(lanes)}, {hits.data(), size_t(lanes)}, found, policy.ray,
-                                      plan, m_rays, {values.data(), size_t(lanes)});
+                                      plan, {laneRays.data(), size_t(lanes)}, {values.data(), size_t(lanes)});
         for (int j = 0; j < lanes; ++j) {
             const glm::vec3 &value = values[size_t(j)];
             PixelSamples &s = samples[pixelOf[size_t(j)]];
             s.sum += value;
             if ((k & 1u) == 0) s.evenSum += value;
+            s.rays += uint32_t(laneRays[size_t(j)].total());
+            m_rays += laneRays[size_t(j)];
         }
     }
     m_costs[size_t(shared)].rays += m_rays.total() - raysBefore;

@@ -21,22 +21,30 @@
 namespace mvcl::detail {
 
 /// Position of sample k inside pixel (x, y), in [0, 1)²: sample 0 is the pixel centre (a
-/// one-sample image is sharp and stable while a lens is dragged); samples 1, 2, … follow the
-/// R2 sequence (a 2-D Kronecker sequence, well spread for any prefix length, which is what
-/// progressive rendering needs) rotated per pixel by a hash of (x, y, seed).
+/// one-sample image is sharp and stable while a lens is dragged); the odd samples and the even
+/// ones after the centre each follow the R2 sequence (a 2-D Kronecker sequence, well spread for
+/// any prefix length, which is what progressive rendering needs) at point k / 2, rotated per
+/// pixel and per half by hashes of (x, y, seed): the two halves are independent estimates.
 glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed);
 
 /// Running sums of one pixel's samples. The even-numbered samples are also summed on their
-/// own: their mean against the mean of all is the error estimate of adaptive sampling.
+/// own: the even and the odd samples are two independent half-images, whose difference
+/// estimates the pixel's error (adaptive sampling, and the image's estimated relMSE).
 struct PixelSamples {
     glm::vec3 sum{0.f};
     glm::vec3 evenSum{0.f};
     uint32_t count = 0;
+    uint32_t rays = 0; ///< rays traced for these samples: what one more sample costs, on average
 
     glm::vec3 mean() const { return count ? sum / float(count) : glm::vec3(0.f); }
     /// |I − A|₁ / √(ε + I_r + I_g + I_b), I the mean of all samples, A of the even ones;
     /// +∞ with fewer than two samples.
     float relativeError() const;
+    /// The expected squared error of mean() relative to its value, as the image's relMSE
+    /// counts it: per channel, the variance of the mean estimated from the even samples' mean
+    /// E (a of them) and the odd ones' O (b), (E − O)²·ab/n², over (mean² + 0.01), averaged over
+    /// the channels. Meaningful with two samples or more (0 below).
+    float relativeMse() const;
 };
 
 /// Traces samples of pixels under a policy map and charges rays, pixels and time to its

@@ -179,6 +179,12 @@ std::vector<uint32_t> RenderSession::sampleCounts() const {
 
 std::vector<float> RenderSession::errorEstimates() const { return d->errors; }
 
+std::vector<uint32_t> RenderSession::rayCounts() const {
+    std::vector<uint32_t> rays(d->samples.size());
+    for (size_t i = 0; i < rays.size(); ++i) rays[i] = d->samples[i].rays;
+    return rays;
+}
+
 const PolicyMap &RenderSession::policyMap() const { return d->map; }
 
 } // namespace mvcl
