@@ -23,7 +23,7 @@ constexpr const char *kUsage = R"(usage: mvcl-render [options] <model.gltf | mod
 Scenes:  builtin:cube-in-cube (the default scene of the paper), builtin:onion)";
 
 constexpr const char *kExitCodes = R"(Exit codes: 0 ok, 1 bad input file (scene, layer rules, lens stack), 2 bad arguments (including
---lens), 3 image or --save-lenses file not written, 4 internal error.)";
+--lens), 3 image, --save-lenses or --convergence-log file not written, 4 internal error.)";
 
 /// The options of mvcl-render bound to `cl`: one table for the parser and --help.
 std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::string> &scenes) {
@@ -94,6 +94,10 @@ std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::stri
         ->option_text(" SPEC")->allow_extra_args(false);
     app->add_option("--save-lenses", cl.saveLensesFile,
                     "write the effective scene, camera, layer rules and lenses as a lens-stack file")
+        ->type_name("FILE");
+    app->add_option("--convergence-log", cl.convergenceLogFile,
+                    "write a CSV row after every pass: time, samples, rays and the estimated\n"
+                    "error (no reference needed; scripts/plot-convergence.py plots it)")
         ->type_name("FILE");
     app->add_flag("--list-lenses", cl.listLenses, "list the lens types found and their properties, then exit");
     app->add_option("--format", cl.listFormat,

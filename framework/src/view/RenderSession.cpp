@@ -75,11 +75,14 @@ void RenderSession::setProgressCallback(std::function<void(float)> callback) { d
 
 RenderPassStats RenderSession::renderPass() { return d->renderPass(); }
 
-RenderPassStats RenderSession::renderUntilIdle() {
+RenderPassStats RenderSession::renderUntilIdle() { return renderUntilIdle({}); }
+
+RenderPassStats RenderSession::renderUntilIdle(const std::function<void(const RenderPassStats &)> &afterPass) {
     RenderPassStats total;
     for (;;) {
         const RenderPassStats pass = renderPass();
         if (pass.kind == PassKind::Idle) break;
+        if (afterPass) afterPass(pass);
         total.kind = pass.kind;
         total.wasCancelled = total.wasCancelled || pass.wasCancelled;
         total.pixelsRestarted += pass.pixelsRestarted;

@@ -117,6 +117,9 @@ public:
     /// Runs passes until the session is idle; returns the passes' stats summed (kind: the last
     /// pass's).
     RenderPassStats renderUntilIdle();
+    /// renderUntilIdle(), calling `afterPass` with each pass's own stats as it ends (a
+    /// ConvergenceLog row, a progress line), on the calling thread.
+    RenderPassStats renderUntilIdle(const std::function<void(const RenderPassStats &)> &afterPass);
     /// True when the next pass would do something.
     bool hasWork() const;
 
