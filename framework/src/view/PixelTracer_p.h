@@ -21,15 +21,14 @@
 namespace mvcl::detail {
 
 /// Position of sample k inside pixel (x, y), in [0, 1)²: sample 0 is the pixel centre (a
-/// one-sample image is sharp and stable while a lens is dragged); the odd samples and the even
-/// ones after the centre each follow the R2 sequence (a 2-D Kronecker sequence, well spread for
-/// any prefix length, which is what progressive rendering needs) at point k / 2, rotated per
-/// pixel and per half by hashes of (x, y, seed): the two halves are independent estimates.
+/// one-sample image is sharp and stable while a lens is dragged); samples 1, 2, … follow the
+/// R2 sequence (a 2-D Kronecker sequence, well spread for any prefix length, which is what
+/// progressive rendering needs) rotated per pixel by a hash of (x, y, seed).
 glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed);
 
 /// Running sums of one pixel's samples. The even-numbered samples are also summed on their
-/// own: the even and the odd samples are two independent half-images, whose difference
-/// estimates the pixel's error (adaptive sampling, and the image's estimated relMSE).
+/// own: the even and the odd samples are two half-images, whose difference estimates the
+/// pixel's error (adaptive sampling, and the image's estimated relMSE).
 struct PixelSamples {
     glm::vec3 sum{0.f};
     glm::vec3 evenSum{0.f};
@@ -40,10 +39,12 @@ struct PixelSamples {
     /// |I − A|₁ / √(ε + I_r + I_g + I_b), I the mean of all samples, A of the even ones;
     /// +∞ with fewer than two samples.
     float relativeError() const;
-    /// The expected squared error of mean() relative to its value, as the image's relMSE
-    /// counts it: per channel, the variance of the mean estimated from the even samples' mean
-    /// E (a of them) and the odd ones' O (b), (E − O)²·ab/n², over (mean² + 0.01), averaged over
-    /// the channels. Meaningful with two samples or more (0 below).
+    /// The squared error of mean() relative to its value, as the image's relMSE counts it,
+    /// estimated from the even samples' mean E (a of them) and the odd ones' O (b): per channel
+    /// (E − O)²·ab/n² over (mean² + 0.01), averaged over the channels; the variance of the mean
+    /// were the halves independent. They are interleaved points of one R2 sequence, whose
+    /// errors partly cancel in the mean, so this is an upper estimate (docs/architecture.md).
+    /// Meaningful with two samples or more (0 below).
     float relativeMse() const;
 };
 
