@@ -182,11 +182,30 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
     std::array<Ray, Tracer::kPacketSize> rays;
     std::array<Hit, Tracer::kPacketSize> hits;
     std::array<int, Tracer::kPacketSize> pixelOf;
+    std::array<uint32_t, Tracer::kPacketSize> sampleOf;
     std::array<glm::vec3, Tracer::kPacketSize> values;
     std::array<RayCounters, Tracer::kPacketSize> laneRays;
-    // Sample by sample: each pixel's sums still add its samples in order k = count, count + 1, …
+    int lanes = 0;
+    const auto traceLanes = [&] {
+        const uint32_t found = tracer.closestHits({rays.data(), size_t(lanes)}, query, {hits.data(), size_t(lanes)});
+        std::fill_n(laneRays.begin(), lanes, RayCounters{});
+        m_integrator.radianceFromHits({rays.data(), size_t(lanes)}, {hits.data(), size_t(lanes)}, found, policy.ray,
+                                      plan, {laneRays.data(), size_t(lanes)}, {values.data(), size_t(lanes)});
+        for (int j = 0; j < lanes; ++j) {
+            const glm::vec3 &value = values[size_t(j)];
+            PixelSamples &s = samples[pixelOf[size_t(j)]];
+            s.sum += value;
+            if ((sampleOf[size_t(j)] & 1u) == 0) s.evenSum += value;
+            s.rays += uint32_t(laneRays[size_t(j)].total());
+            m_rays += laneRays[size_t(j)];
+        }
+        lanes = 0;
+    };
+    // Sample by sample, and a packet filled across samples: a refinement pass where a few pixels
+    // of the block take many samples still traces full packets (of rays through one pixel or two,
+    // the most coherent there are). Each pixel's sums still add its samples in order k = count,
+    // count + 1, …: its lanes come in that order, and packets are summed in the order traced.
     for (uint32_t k = first; k < last; ++k) {
-        int lanes = 0;
         for (int i = 0; i < count; ++i) {
             if (k < samples[i].count || k >= endSample[i]) continue;
             const int x = xOf[size_t(i)], y = yOf[size_t(i)];
@@ -200,21 +219,12 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
             lane.direction = ray.direction;
             lane.coneWidth = ray.coneWidth;
             lane.coneSpread = ray.coneSpread;
-            pixelOf[size_t(lanes++)] = i;
-        }
-        const uint32_t found = tracer.closestHits({rays.data(), size_t(lanes)}, query, {hits.data(), size_t(lanes)});
-        std::fill_n(laneRays.begin(), lanes, RayCounters{});
-        m_integrator.radianceFromHits({rays.data(), size_t(lanes)}, {hits.data(), size_t(lanes)}, found, policy.ray,
-                                      plan, {laneRays.data(), size_t(lanes)}, {values.data(), size_t(lanes)});
-        for (int j = 0; j < lanes; ++j) {
-            const glm::vec3 &value = values[size_t(j)];
-            PixelSamples &s = samples[pixelOf[size_t(j)]];
-            s.sum += value;
-            if ((k & 1u) == 0) s.evenSum += value;
-            s.rays += uint32_t(laneRays[size_t(j)].total());
-            m_rays += laneRays[size_t(j)];
+            pixelOf[size_t(lanes)] = i;
+            sampleOf[size_t(lanes++)] = k;
+            if (lanes == Tracer::kPacketSize) traceLanes();
         }
     }
+    if (lanes > 0) traceLanes();
     m_costs[size_t(shared)].rays += m_rays.total() - raysBefore;
     for (int i = 0; i < count; ++i) {
         // As addSamples(): a pixel counts once per call, and only if it took samples.
