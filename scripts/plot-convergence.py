@@ -9,7 +9,7 @@ estimate of relMSE (no reference) is drawn thin and dashed in each method's colo
 
 It also plots what `mvcl-render --convergence-log FILE.csv` writes (any scene and lens stack,
 no reference): the estimated relMSE and the mean samples per pixel against time, one PNG per
-log, named after it.
+log, named after it (<log>-convergence.png).
 
     scripts/plot-convergence.py my-render.csv -o out/
 
@@ -73,7 +73,7 @@ def plot_log(path, rows, out_dir):
     ax.legend(lines, [line.get_label() for line in lines], loc="upper right", fontsize=8)
     name = os.path.splitext(os.path.basename(path))[0]
     fig.suptitle("%s: estimated error against time (%d passes)" % (name, len(rows)), fontsize=11)
-    out = os.path.join(out_dir, "%s.png" % name)
+    out = os.path.join(out_dir, "%s-convergence.png" % name)
     fig.savefig(out, dpi=110)
     plt.close(fig)
     return out
