@@ -133,12 +133,6 @@ int readLensReference(const Json &value, const LensStack &lenses, const JsonLoca
     return found;
 }
 
-std::string unknownPropertyMessage(const std::string &name, const Lens &lens) {
-    std::string known;
-    for (const PropertyDecl &decl : lens.properties()) known.append(known.empty() ? "" : ", ").append(decl.name);
-    return "unknown property '" + name + "' of lens '" + lens.typeName() + "' (known: " + known + ")";
-}
-
 void readRegionKeys(const Json &json, const Lens &lens, LensKeyframe &keyframe, const JsonLocation &where) {
     static constexpr std::string_view kKeys[] = {"center", "size", "feather", "points"};
     expectObject(json, where);

@@ -1,5 +1,7 @@
 #include "JsonFile_p.h"
 
+#include <mvcl/lens/Lens.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -116,6 +118,12 @@ double shortestDouble(float value) {
     double result = value;
     std::from_chars(text, printed.ptr, result);
     return result;
+}
+
+std::string unknownPropertyMessage(const std::string &key, const Lens &lens) {
+    std::string known;
+    for (const PropertyDecl &decl : lens.properties()) known.append(known.empty() ? "" : ", ").append(decl.name);
+    return "unknown property '" + key + "' of lens '" + lens.typeName() + "' (known: " + known + ")";
 }
 
 std::string prettyJson(const Json &value) {

@@ -16,6 +16,10 @@
 #include <string>
 #include <string_view>
 
+namespace mvcl {
+class Lens;
+} // namespace mvcl
+
 namespace mvcl::detail {
 
 // Ordered, so written files keep the natural key order and properties stay in table order.
@@ -65,6 +69,9 @@ inline glm::vec<N, float> readVector(const Json &value, const JsonLocation &wher
 /// A property value as the text its declaration parses: strings as they are, numbers and
 /// booleans in their JSON spelling, arrays as comma-separated elements ([r,g,b], [1,2]).
 std::string propertyText(const Json &value, const JsonLocation &where);
+
+/// "unknown property 'key' of lens 'type' (known: a, b, ...)".
+std::string unknownPropertyMessage(const std::string &key, const Lens &lens);
 
 /// The double that prints as the shortest text reading back to `value` as a float, so files
 /// say 0.3 and not 0.30000001192092896.

@@ -93,9 +93,7 @@ LensRegion readRegion(const Json &value, const JsonLocation &where) {
 }
 
 std::string unknownPropertyMessage(const std::string &key, const Lens &lens, bool commandLine) {
-    std::string known;
-    for (const PropertyDecl &decl : lens.properties()) known.append(known.empty() ? "" : ", ").append(decl.name);
-    std::string message = "unknown property '" + key + "' of lens '" + lens.typeName() + "' (known: " + known + ")";
+    std::string message = detail::unknownPropertyMessage(key, lens);
     if (commandLine) message += "; region keys: " + joined(kRegionKeys) + "; label, enabled";
     return message;
 }
