@@ -34,7 +34,7 @@ void Viewer::edit(Edit &&change) {
 }
 
 void Viewer::drawUi() {
-    forwardInput();
+    if (!m_player) forwardInput(); // a playing animation owns the view until it ends
     drawImage();
     drawLensOverlays();
     drawPanels();
@@ -57,6 +57,7 @@ void Viewer::drawPanels() {
     if (ImGui::CollapsingHeader("Layers", ImGuiTreeNodeFlags_DefaultOpen)) drawLayersPanel();
     if (ImGui::CollapsingHeader("Under the pointer", ImGuiTreeNodeFlags_DefaultOpen)) drawPickPanel();
     if (ImGui::CollapsingHeader("Depth histogram")) drawHistogramPanel();
+    if (ImGui::CollapsingHeader("Animation")) drawAnimationPanel();
     if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel();
     ImGui::End();
 }
