@@ -10,6 +10,7 @@
 #include <mvcl/view/FrameWriter.h>
 #include <mvcl/view/LensOutlines.h>
 
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <optional>
@@ -75,7 +76,7 @@ int renderAnimation(const RenderCommandLine &cl, const Animation &animation, Ren
     ProgressBar bar(cl.progress && isatty(STDERR_FILENO));
     int done = 0;
     session.setProgressCallback([&](float f) { bar.update((float(done) + f) / float(frames)); });
-    double milliseconds = 0.0;
+    double milliseconds = 0.0, writeMilliseconds = 0.0;
     uint64_t raysTotal = 0, pixelsTraced = 0;
     int fullFrames = 0, incrementalFrames = 0;
     for (int frame = first; frame <= last && !interruptRequested; ++frame) {
@@ -91,7 +92,9 @@ int renderAnimation(const RenderCommandLine &cl, const Animation &animation, Ren
         Framebuffer image = session.image();
         drawLensOutlines(lenses, image);
         try {
+            const auto writeStart = std::chrono::steady_clock::now();
             writer->write(frame, image);
+            writeMilliseconds += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - writeStart).count();
         } catch (const Error &e) {
             bar.finish();
             std::fprintf(stderr, "mvcl-render: %s\n", e.what());
@@ -101,7 +104,9 @@ int renderAnimation(const RenderCommandLine &cl, const Animation &animation, Ren
     }
     bar.finish();
     try {
+        const auto finishStart = std::chrono::steady_clock::now(); // a video's encoder holds frames back
         writer->finish();
+        writeMilliseconds += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - finishStart).count();
     } catch (const Error &e) {
         std::fprintf(stderr, "mvcl-render: %s\n", e.what());
         return kExitOutput;
@@ -114,10 +119,10 @@ int renderAnimation(const RenderCommandLine &cl, const Animation &animation, Ren
                 cl.width, cl.height, session.settings().samplesPerPixel, milliseconds, done,
                 done > 0 ? milliseconds / done : 0.0, fullFrames, incrementalFrames, double(pixelsTraced) * 1e-6,
                 double(raysTotal) * 1e-6);
-    if (writer->writesVideo()) std::printf("wrote      %s\n", output.c_str());
+    if (writer->writesVideo()) std::printf("wrote      %s in %.1f ms (encoding)\n", output.c_str(), writeMilliseconds);
     else if (done > 0)
-        std::printf("wrote      %s .. %s\n", FrameWriter::frameFileName(output, first).c_str(),
-                    FrameWriter::frameFileName(output, first + done - 1).c_str());
+        std::printf("wrote      %s .. %s in %.1f ms (encoding)\n", FrameWriter::frameFileName(output, first).c_str(),
+                    FrameWriter::frameFileName(output, first + done - 1).c_str(), writeMilliseconds);
     if (interruptRequested) {
         std::fprintf(stderr, "mvcl-render: interrupted after %d of %d frames; the frames written are complete\n", done,
                      frames);
