@@ -11,6 +11,8 @@
 #include <mvcl/lens/LensRegistry.h>
 #include <mvcl/view/ImageIO.h>
 
+#include "lens/InTreeLensRegistry.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -40,13 +42,8 @@ fs::path scratch(const std::string &name) {
 }
 
 const LensRegistry &registry() {
-    static const LensRegistry *instance = [] {
-        auto *r = new LensRegistry;
-        for (const Error &e : r->loadModules(LensRegistry::defaultSearchPath()))
-            ADD_FAILURE() << "plugin skipped: " << e.what();
-        return r;
-    }();
-    return *instance;
+    EXPECT_TRUE(test::inTreeLenses().loadErrors.empty()) << test::inTreeLenses().loadErrors.front().what();
+    return test::inTreeLenses().registry;
 }
 
 /// Same size and every pixel equal (8-bit files: the same bytes decoded).

@@ -9,6 +9,8 @@
 #include <mvcl/lens/Lens.h>
 #include <mvcl/lens/LensRegistry.h>
 
+#include "lens/InTreeLensRegistry.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -18,13 +20,8 @@ using namespace mvcl;
 namespace {
 
 const LensRegistry &registry() {
-    static const LensRegistry *instance = [] {
-        auto *r = new LensRegistry;
-        for (const Error &e : r->loadModules(LensRegistry::defaultSearchPath()))
-            ADD_FAILURE() << "plugin skipped: " << e.what();
-        return r;
-    }();
-    return *instance;
+    EXPECT_TRUE(test::inTreeLenses().loadErrors.empty()) << test::inTreeLenses().loadErrors.front().what();
+    return test::inTreeLenses().registry;
 }
 
 } // namespace

@@ -8,6 +8,8 @@
 #include <mvcl/io/LensStackFile.h>
 #include <mvcl/lens/LensRegistry.h>
 
+#include "lens/InTreeLensRegistry.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -21,13 +23,8 @@ using test::errorOf;
 namespace {
 
 const LensRegistry &registry() {
-    static const LensRegistry *instance = [] {
-        auto *r = new LensRegistry;
-        for (const Error &e : r->loadModules(LensRegistry::defaultSearchPath()))
-            ADD_FAILURE() << "plugin skipped: " << e.what();
-        return r;
-    }();
-    return *instance;
+    EXPECT_TRUE(test::inTreeLenses().loadErrors.empty()) << test::inTreeLenses().loadErrors.front().what();
+    return test::inTreeLenses().registry;
 }
 
 /// Layer lens "reveal" (ellipse), achromatic "grey", shadow "tinted" (polygon).
