@@ -2,9 +2,16 @@
 """Error against run time from `mvcl-bench convergence` CSVs: one PNG per scene, log-log,
 relMSE (left) and RMSE (right), uniform / progressive / adaptive as the mean over seeds with a
 min-max band across seeds. The reference's own error estimate is the dotted grey floor, and
-uniform's final relMSE the dashed line that the bench's "R" is measured at.
+uniform's final relMSE the dashed line that the bench's "R" is measured at. The sessions' own
+estimate of relMSE (no reference) is drawn thin and dashed in each method's colour.
 
     scripts/plot-convergence.py out/convergence-*.csv -o docs/images/
+
+It also plots what `mvcl-render --convergence-log FILE.csv` writes (any scene and lens stack,
+no reference): the estimated relMSE and the mean samples per pixel against time, one PNG per
+log, named after it (<log>-convergence.png).
+
+    scripts/plot-convergence.py my-render.csv -o out/
 
 Needs Debian's python3-matplotlib (apt-get install python3-matplotlib), hence /usr/bin/python3
 rather than whatever python3 comes first on PATH.
@@ -22,14 +29,6 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 METHODS = [("uniform", "#1b6ac9"), ("progressive", "#e07b00"), ("adaptive", "#2a9d3a")]
 METRICS = [("relmse", "relMSE (ε = 0.01)"), ("rmse", "RMSE")]
-
-
-def read_rows(paths):
-    rows = []
-    for path in paths:
-        with open(path, newline="") as f:
-            rows.extend(csv.DictReader(f))
-    return rows
 
 
 def curves(rows, metric):
@@ -53,6 +52,33 @@ def curves(rows, metric):
     return result
 
 
+def plot_log(path, rows, out_dir):
+    """A --convergence-log file: estimated relMSE (log-log) and mean spp against time."""
+    points = [(float(r["seconds"]), float(r["estimated_relmse"]), float(r["mean_spp"]))
+              for r in rows if r["estimated_relmse"] and float(r["seconds"]) > 0]
+    if not points:
+        sys.exit("plot-convergence: %s has no pass with an error estimate (every pixel needs two samples)" % path)
+    fig, ax = plt.subplots(figsize=(6.5, 4.2), constrained_layout=True)
+    t = [p[0] for p in points]
+    ax.plot(t, [p[1] for p in points], color="#2a9d3a", marker=".", ms=3, lw=1.6, label="estimated relMSE")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time of the passes (s)")
+    ax.set_ylabel("estimated relMSE (ε = 0.01)")
+    ax.grid(True, which="both", alpha=0.25)
+    spp = ax.twinx()
+    spp.plot(t, [p[2] for p in points], color="0.5", lw=1.0, ls="--", label="mean samples per pixel")
+    spp.set_ylabel("mean samples per pixel")
+    lines = ax.get_legend_handles_labels()[0] + spp.get_legend_handles_labels()[0]
+    ax.legend(lines, [line.get_label() for line in lines], loc="upper right", fontsize=8)
+    name = os.path.splitext(os.path.basename(path))[0]
+    fig.suptitle("%s: estimated error against time (%d passes)" % (name, len(rows)), fontsize=11)
+    out = os.path.join(out_dir, "%s-convergence.png" % name)
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    return out
+
+
 def plot_scene(scene, rows, out_dir):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.4), constrained_layout=True)
     reference = [r for r in rows if r["method"] == "reference"]
@@ -68,6 +94,11 @@ def plot_scene(scene, rows, out_dir):
             ax.fill_between(t, [p[2] for p in points], [p[3] for p in points], color=colour, alpha=0.2, lw=0)
             ax.plot(t, [p[1] for p in points], color=colour, lw=1.6,
                     marker="o" if method == "uniform" else ".", ms=3.5 if method == "uniform" else 3, label=method)
+            if metric == "relmse" and any(r.get("estimated_relmse") for r in rows if r["method"] == method):
+                estimate = [p for p in curves([r for r in rows if r.get("estimated_relmse")], "estimated_relmse")
+                            .get(method, []) if p[0] > 0 and p[1] > 0]
+                ax.plot([p[0] for p in estimate], [p[1] for p in estimate], color=colour, lw=0.9, ls=(0, (4, 2)),
+                        label=method + ", estimated")
             if method == "uniform":
                 final = points[-1][1]
                 ax.axhline(final, color=colour, ls="--", lw=0.8)
@@ -107,10 +138,18 @@ def main():
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
     by_scene = defaultdict(list)
-    for r in read_rows(args.csv):
-        by_scene[r["scene"]].append(r)
-    if not by_scene:
-        sys.exit("plot-convergence: no rows in " + ", ".join(args.csv))
+    bench_files = []
+    for path in args.csv:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+        if rows and "pass" in rows[0] and "scene" not in rows[0]:
+            print("wrote", plot_log(path, rows, args.output))
+        else:
+            bench_files.append(path)
+            for r in rows:
+                by_scene[r["scene"]].append(r)
+    if not by_scene and bench_files:
+        sys.exit("plot-convergence: no rows in " + ", ".join(bench_files))
     for scene, rows in sorted(by_scene.items()):
         path, _ = plot_scene(scene, rows, args.output)
         print("wrote", path)

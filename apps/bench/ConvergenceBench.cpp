@@ -230,6 +230,9 @@ struct Measurement {
     uint64_t samples = 0; ///< pixel samples taken so far by this run (RenderPassStats::samples)
     uint64_t rays = 0;    ///< rays traced so far by this run
     double rmse = 0.0, relMse = 0.0, psnr = 0.0, flip = -1.0;
+    /// The session's own estimate of relMSE (ConvergenceStats::estimatedRelativeMse), no
+    /// reference needed; −1 while a pixel has fewer than two samples.
+    double estimatedRelMse = -1.0;
 };
 
 /// Where a run stands after a pass.
@@ -301,6 +304,7 @@ Measurement sampleState(const RenderSession &session, const std::string &method,
     Measurement m{method, seed, step, c.meanSamples, c.minSamples, c.maxSamples, progress.seconds,
                   progress.samples, progress.rays};
     evaluator.measure(session.image(), m);
+    m.estimatedRelMse = c.estimatedRelativeMse.value_or(-1.0);
     return m;
 }
 
@@ -375,16 +379,18 @@ void writeCsv(const std::string &path, const std::string &scene, const Reference
     if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
     std::ofstream out(p);
     if (!out) throw Error(path, "cannot write");
-    out << "scene,method,seed,step,mean_spp,min_spp,max_spp,seconds,rmse,relmse,psnr,flip,samples,rays\n";
+    out << "scene,method,seed,step,mean_spp,min_spp,max_spp,seconds,rmse,relmse,psnr,flip,samples,rays,"
+           "estimated_relmse\n";
     // The reference's own error estimate, so plots can show how far below the curves it lies.
     out << scene << ",reference,0," << referenceSpp << ',' << referenceSpp << ',' << referenceSpp << ','
         << referenceSpp << ',' << number(ref.secondsPerRender) << ',' << number(ref.ownRmse) << ','
-        << number(ref.ownRelMse) << ",,,,\n";
+        << number(ref.ownRelMse) << ",,,,,\n";
     for (const Measurement &m : rows)
         out << scene << ',' << m.method << ',' << m.seed << ',' << m.step << ',' << number(m.meanSpp) << ','
             << m.minSpp << ',' << m.maxSpp << ',' << number(m.seconds) << ',' << number(m.rmse) << ','
             << number(m.relMse) << ',' << number(m.psnr) << ',' << (m.flip >= 0.0 ? number(m.flip) : "") << ','
-            << m.samples << ',' << m.rays << '\n';
+            << m.samples << ',' << m.rays << ',' << (m.estimatedRelMse >= 0.0 ? number(m.estimatedRelMse) : "")
+            << '\n';
     if (!out) throw Error(path, "write failed");
 }
 
@@ -449,6 +455,30 @@ void printTable(const std::map<std::string, std::vector<Measurement>> &means) {
             while (nextPower <= curve[i].meanSpp) nextPower *= 2.0;
             printRow(curve[i], uniform ? "spp" : "pass");
         }
+    }
+}
+
+/// How the session's own estimate of relMSE compares with the error measured against the
+/// reference (less the reference's own error, which the measured one includes), per method over
+/// every measurement of every seed that has an estimate.
+void printEstimateAgainstError(const std::vector<Measurement> &rows, const Reference &ref) {
+    std::printf("\nestimated relMSE (no reference) over the error against the reference, every measurement:\n");
+    for (const char *method : {"uniform", "progressive", "adaptive"}) {
+        double lowest = std::numeric_limits<double>::infinity(), highest = 0.0, logSum = 0.0;
+        int count = 0;
+        for (const Measurement &m : rows) {
+            if (m.method != method || m.estimatedRelMse < 0.0) continue;
+            const double truth = m.relMse - ref.ownRelMse;
+            if (!(truth > 0.0)) continue;
+            const double ratio = m.estimatedRelMse / truth;
+            lowest = std::min(lowest, ratio);
+            highest = std::max(highest, ratio);
+            logSum += std::log(ratio);
+            ++count;
+        }
+        if (count == 0) continue;
+        std::printf("%-12s %.2f .. %.2f (geometric mean %.2f, %d measurements)\n", method, lowest, highest,
+                    std::exp(logSum / count), count);
     }
 }
 
@@ -608,6 +638,7 @@ int runConvergenceBench(int argc, char **argv) {
             means[method] = meanOverSeeds(rows, method);
         printTable(means);
         std::printf("\nwrote      %s (%zu measurements)\n", csv.c_str(), rows.size());
+        printEstimateAgainstError(rows, ref);
 
         const std::vector<Measurement> &uniform = means["uniform"];
         const auto finalUniform = std::find_if(uniform.begin(), uniform.end(),

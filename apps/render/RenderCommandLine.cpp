@@ -23,8 +23,8 @@ constexpr const char *kUsage = R"(usage: mvcl-render [options] <model.gltf | mod
 Scenes:  builtin:cube-in-cube (the default scene of the paper), builtin:onion)";
 
 constexpr const char *kExitCodes = R"(Exit codes: 0 ok, 1 bad input file (scene, layer rules, lens stack, animation), 2 bad arguments
-(including --lens, --sweep), 3 image, frames, video or --save-lenses file not written, 4 internal
-error, 130 interrupted (the frames written so far are complete).)";
+(including --lens, --sweep), 3 image, frames, video, --save-lenses or --convergence-log file not
+written, 4 internal error, 130 interrupted (the frames written so far are complete).)";
 
 /// "A-B" (inclusive) or "A": frame numbers from 0.
 std::pair<int, int> parseFrameRange(std::string_view text) {
@@ -105,6 +105,10 @@ std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::stri
     app->add_option("--save-lenses", cl.saveLensesFile,
                     "write the effective scene, camera, layer rules and lenses as a lens-stack file")
         ->type_name("FILE");
+    app->add_option("--convergence-log", cl.convergenceLogFile,
+                    "write a CSV row after every pass: time, samples, rays and the estimated\n"
+                    "error (no reference needed; scripts/plot-convergence.py plots it)")
+        ->type_name("FILE");
     app->add_flag("--list-lenses", cl.listLenses, "list the lens types found and their properties, then exit");
     app->add_option("--format", cl.listFormat,
                     "how --list-lenses prints: text (default) or markdown (the property tables of docs/lenses.md)")
@@ -173,6 +177,8 @@ RenderCommandLine parseRenderCommandLine(const std::vector<std::string> &args) {
         usageError("--animate renders its file; --turntable and --sweep make an animation of their own");
     if (cl.turntableFrames && app->count("--frame-count"))
         usageError("--turntable N sets the frame count already");
+    if (isAnimation(cl) && !cl.convergenceLogFile.empty())
+        usageError("--convergence-log logs the passes of one image, not of an animation's frames");
     if (!isAnimation(cl))
         for (const char *option : {"--frames", "--frame-count", "--frame-rate"})
             if (app->count(option)) usageError(std::string(option) + " needs --animate, --turntable or --sweep");

@@ -44,6 +44,7 @@ struct RenderCommandLine {
     std::string lensFile;            ///< lens-stack JSON (--lenses)
     std::vector<std::string> lensSpecs; ///< "type:key=value,..." (--lens), stacked above the file's
     std::string saveLensesFile;      ///< write the effective stack here (--save-lenses)
+    std::string convergenceLogFile;  ///< --convergence-log: a CSV row after every pass
     bool listLenses = false;
     std::string listFormat = "text"; ///< --format of --list-lenses: text | markdown
     bool info = false;

@@ -14,6 +14,7 @@
 #include <mvcl/tracer/LayerContactProbe.h>
 #include <mvcl/tracer/Tracer.h>
 #include <mvcl/view/Camera.h>
+#include <mvcl/view/ConvergenceLog.h>
 #include <mvcl/view/ImageIO.h>
 #include <mvcl/view/LensOutlines.h>
 #include <mvcl/view/RenderSession.h>
@@ -21,6 +22,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unistd.h>
@@ -315,9 +317,18 @@ int run(const RenderCommandLine &cl) {
     lensContext.imageWidth = cl.width;
     lensContext.imageHeight = cl.height;
     LensStack::checkClipVolumes(lenses.compose(lensContext, base));
+    std::unique_ptr<ConvergenceLog> log;
+    try {
+        if (!cl.convergenceLogFile.empty()) log = std::make_unique<ConvergenceLog>(cl.convergenceLogFile);
+    } catch (const Error &e) {
+        std::fprintf(stderr, "mvcl-render: %s\n", e.what());
+        return kExitOutput;
+    }
     ProgressBar bar(cl.progress && isatty(STDERR_FILENO));
     session.setProgressCallback([&](float f) { bar.update(f); });
-    const RenderPassStats stats = session.renderUntilIdle();
+    const RenderPassStats stats = session.renderUntilIdle([&](const RenderPassStats &pass) {
+        if (log) log->addPass(pass, session.convergence());
+    });
     bar.finish();
     Framebuffer image = session.image();
     drawLensOutlines(lenses, image);
@@ -344,8 +355,10 @@ int run(const RenderCommandLine &cl) {
     std::printf("render     %dx%d, %s, %d threads: %.1f ms\n", cl.width, cl.height, samplingName(settings).c_str(),
                 settings.threads > 0 ? std::min(settings.threads, workerThreadCount()) : workerThreadCount(),
                 stats.milliseconds);
-    std::printf("samples    %d min, %.2f mean, %d max per pixel; estimated error %.4f mean, %.4f max\n",
+    std::printf("samples    %d min, %.2f mean, %d max per pixel; estimated error %.4f mean, %.4f max",
                 reached.minSamples, reached.meanSamples, reached.maxSamples, reached.meanError, reached.maxError);
+    if (reached.estimatedRelativeMse) std::printf("; estimated relMSE %.3g", *reached.estimatedRelativeMse);
+    std::printf("\n");
     std::printf("rays       %.3f M (primary %.3f M, shadow %.3f M, reflection %.3f M, refraction %.3f M), %.2f Mrays/s\n",
                 double(stats.rays.total()) * 1e-6, double(stats.rays.primary) * 1e-6, double(stats.rays.shadow) * 1e-6,
                 double(stats.rays.reflection) * 1e-6, double(stats.rays.refraction) * 1e-6,
@@ -353,6 +366,7 @@ int run(const RenderCommandLine &cl) {
     printSkippedStages(stats.rays, settings);
     if (!lenses.isEmpty()) printLensCosts(lenses, session.policyMap(), stats);
     if (!cl.saveLensesFile.empty()) std::printf("saved      %s\n", cl.saveLensesFile.c_str());
+    if (log) std::printf("logged     %s (%d passes)\n", cl.convergenceLogFile.c_str(), log->passCount());
     std::printf("wrote      %s\n", output.c_str());
     return kExitOk;
 }

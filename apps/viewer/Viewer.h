@@ -12,6 +12,7 @@
 #include <mvcl/controller/ViewRecorder.h>
 #include <mvcl/lens/LensRegistry.h>
 #include <mvcl/lens/PolicyMap.h>
+#include <mvcl/view/ConvergenceHistory.h>
 #include <mvcl/view/DepthHistogram.h>
 #include <mvcl/view/Framebuffer.h>
 #include <mvcl/view/Picking.h>
@@ -71,6 +72,7 @@ private:
     void drawLensPanel();
     void drawLayersPanel();
     void drawStatsPanel();
+    void drawConvergenceCurve();
     void drawPickPanel();
     void drawHistogramPanel();
     /// Joins the histogram worker: before anything replaces the scene it traces.
@@ -135,6 +137,7 @@ private:
     Clock::time_point m_frameStart = Clock::now();
     double m_lastFrameMs = 0.0;
     std::deque<double> m_frameTimes;
+    ConvergenceHistory m_convergence; ///< the focused view's estimated error against time
 
     // Animation: keyframes into a file, playback on the view, recording of what the view shows.
     std::string m_animationFile = "animation.json";

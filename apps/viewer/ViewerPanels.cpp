@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <cmath>
 #include <cstdio>
 #include <numeric>
 
@@ -58,6 +59,8 @@ void Viewer::drawPanels() {
     if (ImGui::CollapsingHeader("Under the pointer", ImGuiTreeNodeFlags_DefaultOpen)) drawPickPanel();
     if (ImGui::CollapsingHeader("Depth histogram")) drawHistogramPanel();
     if (ImGui::CollapsingHeader("Animation")) drawAnimationPanel();
+    // Every frame, open or not, so that the curve has every pass when the panel opens.
+    m_convergence.add(m_controller->renderSession().convergence(), m_controller->renderSession().passCount());
     if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel();
     ImGui::End();
 }
@@ -278,6 +281,7 @@ void Viewer::drawStatsPanel() {
     if (pass.kind == PassKind::Preview) ImGui::Text("preview at 1/%d resolution", pass.resolutionDivider);
     ImGui::Text("samples %d min, %.1f mean, %d max per pixel", c.minSamples, c.meanSamples, c.maxSamples);
     ImGui::Text("estimated error %.4f mean, %.4f max%s", c.meanError, c.maxError, c.isConverged ? "  (converged)" : "");
+    drawConvergenceCurve();
     for (const LensCost &cost : pass.perLens)
         ImGui::Text("  lens %d '%s': %llu px, %.1f ms", cost.index, cost.label.c_str(), (unsigned long long)cost.pixels,
                     cost.milliseconds);
@@ -296,6 +300,24 @@ void Viewer::drawStatsPanel() {
             report(e.what());
         }
     }
+}
+
+void Viewer::drawConvergenceCurve() {
+    // The image's estimated relMSE (no reference) against time since the last restart: what
+    // more waiting buys. Log scale, the time axis even (ConvergenceHistory resamples it).
+    const std::vector<float> curve = m_convergence.log10ErrorOverTime(96);
+    if (curve.empty()) {
+        ImGui::TextDisabled("error curve: from two samples a pixel on");
+        return;
+    }
+    const ConvergenceHistory::Point &last = m_convergence.points().back();
+    const auto [low, high] = std::minmax_element(curve.begin(), curve.end());
+    char overlay[96];
+    std::snprintf(overlay, sizeof overlay, "relMSE %.2g after %.1f s", last.relativeMse, last.seconds);
+    ImGui::PlotLines("##error", curve.data(), int(curve.size()), 0, overlay, *low - 0.1f, *high + 0.1f,
+                     ImVec2(ImGui::GetContentRegionAvail().x, 60.f * m_contentScale));
+    ImGui::TextDisabled("est. relMSE %.2g .. %.2g (log), 0 .. %.1f s", std::pow(10.0, double(*low)),
+                        std::pow(10.0, double(*high)), last.seconds);
 }
 
 void Viewer::drawOpenPopup() {

@@ -195,6 +195,8 @@ TEST(RenderAnimationCli, BadInputIsOneLineNamingTheFileAndTheProblem) {
          "command line: --frames 3-5: the animation has 5 frames (0 to 4)"},
         {lenses + " --frames 0-1", 2, "command line: --frames needs --animate, --turntable or --sweep"},
         {lenses + " --turntable 3 --frame-count 4", 2, "command line: --turntable N sets the frame count already"},
+        {lenses + " --turntable 3 --convergence-log " + quoted((dir / "log.csv").string()), 2,
+         "command line: --convergence-log logs the passes of one image, not of an animation's frames"},
         {lenses + " --turntable 3 -o " + quoted((dir / "still.png").string()), 3,
          (dir / "still.png").string() + ": numbered frames need one frame number in the name"},
     };

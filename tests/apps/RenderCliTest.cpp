@@ -3,6 +3,8 @@
 #include "ImageCompare.h"
 #include "apps/RenderCliRunner.h"
 
+#include <mvcl/view/ConvergenceLog.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +14,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using namespace mvcl::test;
@@ -143,6 +146,51 @@ TEST(RenderCli, AdaptiveRenderReportsSamplesReachedAndEstimatedError) {
     EXPECT_NE(r.output.find("samples    2 min,"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("32 max per pixel; estimated error"), std::string::npos) << r.output;
     EXPECT_TRUE(fs::exists(out));
+}
+
+// --convergence-log: a row a pass, as ConvergenceLog writes them, for any render without a
+// reference; time, samples and rays grow, and the last row's totals are the summary's.
+TEST(RenderCli, ConvergenceLogHasARowAfterEveryPass) {
+    const fs::path log = outDir() / "convergence.csv";
+    fs::remove(log);
+    const CommandResult r = runRender("builtin:cube-in-cube --size 64x48 --spp 2 --adaptive --max-spp 32 "
+                                      "--target-error 0.02 --convergence-log " + log.string() + " -o " +
+                                      (outDir() / "convergence.png").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream in(log);
+    std::string header;
+    ASSERT_TRUE(std::getline(in, header));
+    EXPECT_EQ(header, mvcl::ConvergenceLog::kHeader);
+    std::vector<std::vector<std::string>> rows;
+    for (std::string line; std::getline(in, line);) {
+        std::vector<std::string> fields;
+        std::stringstream cells(line);
+        for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
+        if (line.back() == ',') fields.emplace_back();
+        ASSERT_EQ(fields.size(), 12u) << line;
+        rows.push_back(fields);
+    }
+    ASSERT_GE(rows.size(), 3u) << "an adaptive render takes a full pass, then refinement passes";
+    EXPECT_NE(r.output.find("logged     " + log.string() + " (" + std::to_string(rows.size()) + " passes)"),
+              std::string::npos)
+        << r.output;
+    for (size_t i = 1; i < rows.size(); ++i) {
+        EXPECT_EQ(std::stoi(rows[i][0]), int(i + 1));
+        EXPECT_GE(std::stod(rows[i][2]), std::stod(rows[i - 1][2])) << "seconds";
+        EXPECT_GT(std::stoull(rows[i][3]), std::stoull(rows[i - 1][3])) << "samples";
+        EXPECT_GT(std::stoull(rows[i][4]), std::stoull(rows[i - 1][4])) << "rays";
+        // From two samples a pixel on, every row has the image's estimated relMSE.
+        ASSERT_FALSE(rows[i][8].empty()) << "row " << i + 1;
+        EXPECT_GT(std::stod(rows[i][8]), 0.0);
+    }
+    EXPECT_EQ(rows.front()[1], "full");
+    EXPECT_NE(r.output.find("estimated relMSE"), std::string::npos) << r.output;
+
+    const CommandResult unwritable =
+        runRender("builtin:onion --size 8x8 --convergence-log /nonexistent/dir/log.csv -o " +
+                  (outDir() / "unused.png").string());
+    EXPECT_EQ(unwritable.exitCode, 3) << unwritable.output;
+    EXPECT_NE(unwritable.output.find("/nonexistent/dir/log.csv"), std::string::npos) << unwritable.output;
 }
 
 TEST(RenderCli, TimeLimitStopsAProgressiveRender) {

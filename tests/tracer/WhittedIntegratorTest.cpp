@@ -249,13 +249,19 @@ TEST(WhittedIntegrator, RadianceFromHitsOfABlockIsRadianceRayByRay) {
                     }
                     const uint32_t found = tracer.closestHits(rays, policy.query(RayType::Primary), hits);
                     std::array<glm::vec3, Tracer::kPacketSize> values;
+                    std::array<RayCounters, Tracer::kPacketSize> perRay;
+                    integrator.radianceFromHits(rays, hits, found, policy, plan, perRay, values);
                     RayCounters counters, expectedCounters;
-                    integrator.radianceFromHits(rays, hits, found, policy, plan, counters, values);
                     for (int i = 0; i < Tracer::kPacketSize; ++i) {
-                        const glm::vec3 expected = integrator.radiance(rays[size_t(i)], policy, plan, expectedCounters);
+                        RayCounters own;
+                        const glm::vec3 expected = integrator.radiance(rays[size_t(i)], policy, plan, own);
                         for (int c = 0; c < 3; ++c)
                             ASSERT_EQ(std::bit_cast<uint32_t>(values[size_t(i)][c]), std::bit_cast<uint32_t>(expected[c]))
                                 << bx << "," << by << " ray " << i;
+                        // Each ray's own cost, as adaptive sampling weighs its pixel's error by it.
+                        ASSERT_EQ(perRay[size_t(i)].total(), own.total()) << bx << "," << by << " ray " << i;
+                        counters += perRay[size_t(i)];
+                        expectedCounters += own;
                     }
                     ASSERT_EQ(counters.total(), expectedCounters.total());
                     ASSERT_EQ(counters.shadow, expectedCounters.shadow);
@@ -281,9 +287,12 @@ TEST(WhittedIntegrator, RadianceFromHitsRejectsOversizedBlocks) {
     std::vector<Ray> rays(Tracer::kPacketSize + 1);
     std::vector<Hit> hits(rays.size());
     std::vector<glm::vec3> values(rays.size());
-    RayCounters counters;
+    std::vector<RayCounters> counters(rays.size());
     EXPECT_THROW(integrator.radianceFromHits(rays, hits, 0, {}, {}, counters, values), Error);
     EXPECT_THROW(integrator.radianceFromHits(std::span<const Ray>(rays.data(), 4), std::span<const Hit>(hits.data(), 3), 0,
                                              {}, {}, counters, values),
+                 Error);
+    EXPECT_THROW(integrator.radianceFromHits(std::span<const Ray>(rays.data(), 4), std::span<const Hit>(hits.data(), 4), 0,
+                                             {}, {}, std::span<RayCounters>(counters.data(), 3), values),
                  Error);
 }

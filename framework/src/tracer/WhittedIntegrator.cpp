@@ -477,6 +477,7 @@ struct WhittedIntegrator::StreamRay {
     Ray ray;
     int depth;
     Destination to;
+    int root; ///< the primary ray whose sample this ray serves (its rays are counted there)
 };
 
 /// A point whose colour waits for its secondary rays' radiance (SecondaryRays, and what they
@@ -487,6 +488,7 @@ struct WhittedIntegrator::WaitingPoint {
     float refractWeight;
     bool reflects;
     Destination to;
+    int root; ///< as StreamRay::root
     glm::vec3 secondary[2]; ///< reflected, refracted radiance (0 where not traced)
 };
 
@@ -497,8 +499,9 @@ struct WhittedIntegrator::StreamScratch {
 };
 
 void WhittedIntegrator::shadeBatch(std::span<ShadingPoint> points, uint32_t lit, const Destination *to,
-                                   const RayPolicy &policy, const IntegratorPlan &plan, RayCounters &counters,
-                                   StreamScratch &scratch, std::span<glm::vec3> radiance) const {
+                                   const int *root, const RayPolicy &policy, const IntegratorPlan &plan,
+                                   std::span<RayCounters> counters, StreamScratch &scratch,
+                                   std::span<glm::vec3> radiance) const {
     // Opaque occluders only (any-hit answers): the shadow rays of all points toward one light
     // are one packet, coherent where the points are neighbours. A point on a cap has its own
     // shadow query (the cut's clips added) and goes ray by ray, as do transparent walks.
@@ -533,16 +536,17 @@ void WhittedIntegrator::shadeBatch(std::span<ShadingPoint> points, uint32_t lit,
         const ShadingPoint &p = points[i];
         SecondaryRays next;
         glm::vec3 finished;
-        if (!litColor(p, policy, plan, counters, (packeted >> i) & 1u ? answers[i].data() : nullptr, next, finished)) {
-            deliver(to[i], finished, policy, plan, counters, scratch, radiance);
+        RayCounters &own = counters[size_t(root[i])];
+        if (!litColor(p, policy, plan, own, (packeted >> i) & 1u ? answers[i].data() : nullptr, next, finished)) {
+            deliver(to[i], finished, policy, plan, own, scratch, radiance);
             continue;
         }
         // The point waits for its secondary rays, which join the next waves.
         const int node = int(scratch.waiting.size());
-        scratch.waiting.push_back({next.color, next.reflectFactor, next.refractWeight, next.reflects, to[i],
+        scratch.waiting.push_back({next.color, next.reflectFactor, next.refractWeight, next.reflects, to[i], root[i],
                                    {glm::vec3(0.f), glm::vec3(0.f)}});
-        if (next.reflects) scratch.rays[0].push_back({next.reflectRay, p.depth + 1, {node, 0}});
-        if (next.refracts) scratch.rays[1].push_back({next.refractRay, p.depth + 1, {node, 1}});
+        if (next.reflects) scratch.rays[0].push_back({next.reflectRay, p.depth + 1, {node, 0}, root[i]});
+        if (next.refracts) scratch.rays[1].push_back({next.refractRay, p.depth + 1, {node, 1}, root[i]});
     }
 }
 
@@ -557,12 +561,14 @@ void WhittedIntegrator::deliver(const Destination &to, const glm::vec3 &value, c
 
 void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::span<const Hit> primaryHits,
                                          uint32_t hitMask, const RayPolicy &policy, const IntegratorPlan &plan,
-                                         RayCounters &counters, std::span<glm::vec3> radiance) const {
+                                         std::span<RayCounters> counters, std::span<glm::vec3> radiance) const {
     const std::size_t count = primaryRays.size();
-    if (count > std::size_t(Tracer::kPacketSize) || primaryHits.size() < count || radiance.size() < count)
+    if (count > std::size_t(Tracer::kPacketSize) || primaryHits.size() < count || radiance.size() < count ||
+        counters.size() < count)
         throw Error("integrator", "radianceFromHits takes at most " + std::to_string(Tracer::kPacketSize) +
-                                      " rays with as many hits and values, not " + std::to_string(count) + ", " +
-                                      std::to_string(primaryHits.size()) + " and " + std::to_string(radiance.size()));
+                                      " rays with as many hits, values and counters, not " + std::to_string(count) +
+                                      ", " + std::to_string(primaryHits.size()) + ", " +
+                                      std::to_string(radiance.size()) + " and " + std::to_string(counters.size()));
     thread_local StreamScratch scratch;
     scratch.waiting.clear();
     scratch.rays[0].clear();
@@ -571,6 +577,7 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
     // Wave 0: the primary points, kept to the end for shown() (edge lines, translucency).
     std::array<ShadingPoint, Tracer::kPacketSize> primary;
     std::array<Destination, Tracer::kPacketSize> to;
+    std::array<int, Tracer::kPacketSize> root;
     // A primary ray that missed, with no cap or outline to draw, shows the background through
     // the colour stage: one value for all of them (most rays of a model's frame), computed once
     // with the counts it adds to each.
@@ -582,22 +589,24 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
         plainMisses ? finishSample(m_tracer.scene().background, policy, plan, missCounts) : glm::vec3(0.f);
     uint32_t lit = 0; // rays whose point goes on to the light loop
     for (std::size_t i = 0; i < count; ++i) {
-        countRay(RayType::Primary, counters);
+        RayCounters &own = counters[i];
+        countRay(RayType::Primary, own);
         if (plainMisses && ((missed >> i) & 1u)) {
             radiance[i] = missValue;
-            counters.skippedColorMaps += missCounts.skippedColorMaps;
-            counters.nonFiniteSamples += missCounts.nonFiniteSamples;
+            own.skippedColorMaps += missCounts.skippedColorMaps;
+            own.nonFiniteSamples += missCounts.nonFiniteSamples;
             continue;
         }
         to[i] = {-1, int(i)};
+        root[i] = int(i);
         glm::vec3 finished;
         if (prepareShading(primaryRays[i], RayType::Primary, 0, (hitMask >> i) & 1u ? &primaryHits[i] : nullptr,
-                           policy, plan, counters, 0.f, primary[i], finished))
+                           policy, plan, own, 0.f, primary[i], finished))
             lit |= 1u << i;
         else
-            radiance[i] = finishSample(finished, policy, plan, counters);
+            radiance[i] = finishSample(finished, policy, plan, own);
     }
-    shadeBatch(primary, lit, to.data(), policy, plan, counters, scratch, radiance);
+    shadeBatch(primary, lit, to.data(), root.data(), policy, plan, counters, scratch, radiance);
 
     // Later waves: reflected and refracted rays, each kind in packets of up to kPacketSize under
     // its own query; their points are lit as a batch and send their own secondary rays on.
@@ -610,26 +619,29 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
         std::array<Ray, Tracer::kPacketSize> rays;
         std::array<Hit, Tracer::kPacketSize> hits;
         std::array<Destination, Tracer::kPacketSize> batchTo;
-        std::array<int, Tracer::kPacketSize> depth;
+        std::array<int, Tracer::kPacketSize> depth, batchRoot;
         for (std::size_t j = 0; j < n; ++j) {
             const StreamRay &r = scratch.rays[kind][read[kind] + j];
             rays[j] = r.ray;
             batchTo[j] = r.to;
             depth[j] = r.depth;
+            batchRoot[j] = r.root;
         }
         read[kind] += n;
         const uint32_t found = m_tracer.closestHits({rays.data(), n}, policy.query(type), {hits.data(), n});
         uint32_t batchLit = 0;
         for (std::size_t j = 0; j < n; ++j) {
-            countRay(type, counters);
+            RayCounters &own = counters[size_t(batchRoot[j])];
+            countRay(type, own);
             glm::vec3 finished;
-            if (prepareShading(rays[j], type, depth[j], (found >> j) & 1u ? &hits[j] : nullptr, policy, plan, counters,
+            if (prepareShading(rays[j], type, depth[j], (found >> j) & 1u ? &hits[j] : nullptr, policy, plan, own,
                                0.f, batch[j], finished))
                 batchLit |= 1u << j;
             else
-                deliver(batchTo[j], finished, policy, plan, counters, scratch, radiance);
+                deliver(batchTo[j], finished, policy, plan, own, scratch, radiance);
         }
-        shadeBatch({batch.data(), n}, batchLit, batchTo.data(), policy, plan, counters, scratch, radiance);
+        shadeBatch({batch.data(), n}, batchLit, batchTo.data(), batchRoot.data(), policy, plan, counters, scratch,
+                   radiance);
     }
 
     // Every waiting point was made after the point it reports to, so one pass from the last to
@@ -642,7 +654,8 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
             scratch.waiting[size_t(w.to.node)].secondary[w.to.index] = value;
         else
             radiance[size_t(w.to.index)] =
-                finishSample(shown(primary[size_t(w.to.index)], value, policy, counters), policy, plan, counters);
+                finishSample(shown(primary[size_t(w.to.index)], value, policy, counters[size_t(w.root)]), policy, plan,
+                             counters[size_t(w.root)]);
     }
 }
 

@@ -33,6 +33,9 @@ constexpr double kR2b = 0.56984029099805326591;
 
 glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed) {
     if (k == 0) return {0.5f, 0.5f};
+    // One sequence for all samples, not two independently rotated halves: the halves would make
+    // the even/odd error estimate exact in expectation, but cost 20–100 % more squared error at
+    // the same sample count (measured, docs/benchmarks.md), which every image would pay.
     const uint32_t key = hash32(uint32_t(y) * 0x9e3779b1u ^ uint32_t(x) ^ hash32(seed));
     const double u = 0.5 + unitDouble(key) + double(k) * kR2a;
     const double v = 0.5 + unitDouble(hash32(key)) + double(k) * kR2b;
@@ -47,6 +50,16 @@ float PixelSamples::relativeError() const {
     const glm::vec3 even = evenSum / float((count + 1) / 2);
     const glm::vec3 d = glm::abs(all - even);
     return (d.x + d.y + d.z) / std::sqrt(1e-4f + std::max(all.x + all.y + all.z, 0.f));
+}
+
+float PixelSamples::relativeMse() const {
+    if (count < 2) return 0.f;
+    const float evens = float((count + 1) / 2), odds = float(count / 2), n = float(count);
+    const glm::vec3 all = sum / n;
+    const glm::vec3 d = evenSum / evens - (sum - evenSum) / odds;
+    const glm::vec3 variance = d * d * (evens * odds / (n * n));
+    const glm::vec3 relative = variance / (all * all + 0.01f);
+    return (relative.x + relative.y + relative.z) / 3.f;
 }
 
 PixelTracer::PixelTracer(const WhittedIntegrator &integrator, const Camera &camera, const PolicyMap &map,
@@ -107,17 +120,20 @@ void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &sam
             if ((k & 1u) == 0) samples.evenSum += value;
         }
         m_costs[index].rays += m_rays.total() - raysBefore;
+        samples.rays += uint32_t(m_rays.total() - raysBefore);
         ++m_costs[index].pixels;
         m_samples += endSample - samples.count;
         samples.count = endSample;
         return;
     }
     // A feathered edge: each sample blends every term at the same position.
+    const uint64_t raysBefore = m_rays.total();
     for (uint32_t k = samples.count; k < endSample; ++k) {
         const glm::vec3 value = traceTerms(x, y, pixel + sampleOffset(x, y, k, m_seed));
         samples.sum += value;
         if ((k & 1u) == 0) samples.evenSum += value;
     }
+    samples.rays += uint32_t(m_rays.total() - raysBefore);
     for (const PolicyTerm &term : terms) ++m_costs[term.policy].pixels;
     m_samples += uint64_t(endSample - samples.count) * terms.size();
     samples.count = endSample;
@@ -166,10 +182,30 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
     std::array<Ray, Tracer::kPacketSize> rays;
     std::array<Hit, Tracer::kPacketSize> hits;
     std::array<int, Tracer::kPacketSize> pixelOf;
+    std::array<uint32_t, Tracer::kPacketSize> sampleOf;
     std::array<glm::vec3, Tracer::kPacketSize> values;
-    // Sample by sample: each pixel's sums still add its samples in order k = count, count + 1, …
+    std::array<RayCounters, Tracer::kPacketSize> laneRays;
+    int lanes = 0;
+    const auto traceLanes = [&] {
+        const uint32_t found = tracer.closestHits({rays.data(), size_t(lanes)}, query, {hits.data(), size_t(lanes)});
+        std::fill_n(laneRays.begin(), lanes, RayCounters{});
+        m_integrator.radianceFromHits({rays.data(), size_t(lanes)}, {hits.data(), size_t(lanes)}, found, policy.ray,
+                                      plan, {laneRays.data(), size_t(lanes)}, {values.data(), size_t(lanes)});
+        for (int j = 0; j < lanes; ++j) {
+            const glm::vec3 &value = values[size_t(j)];
+            PixelSamples &s = samples[pixelOf[size_t(j)]];
+            s.sum += value;
+            if ((sampleOf[size_t(j)] & 1u) == 0) s.evenSum += value;
+            s.rays += uint32_t(laneRays[size_t(j)].total());
+            m_rays += laneRays[size_t(j)];
+        }
+        lanes = 0;
+    };
+    // Sample by sample, and a packet filled across samples: a refinement pass where a few pixels
+    // of the block take many samples still traces full packets (of rays through one pixel or two,
+    // the most coherent there are). Each pixel's sums still add its samples in order k = count,
+    // count + 1, …: its lanes come in that order, and packets are summed in the order traced.
     for (uint32_t k = first; k < last; ++k) {
-        int lanes = 0;
         for (int i = 0; i < count; ++i) {
             if (k < samples[i].count || k >= endSample[i]) continue;
             const int x = xOf[size_t(i)], y = yOf[size_t(i)];
@@ -183,18 +219,12 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
             lane.direction = ray.direction;
             lane.coneWidth = ray.coneWidth;
             lane.coneSpread = ray.coneSpread;
-            pixelOf[size_t(lanes++)] = i;
-        }
-        const uint32_t found = tracer.closestHits({rays.data(), size_t(lanes)}, query, {hits.data(), size_t(lanes)});
-        m_integrator.radianceFromHits({rays.data(), size_t(lanes)}, {hits.data(), size_t(lanes)}, found, policy.ray,
-                                      plan, m_rays, {values.data(), size_t(lanes)});
-        for (int j = 0; j < lanes; ++j) {
-            const glm::vec3 &value = values[size_t(j)];
-            PixelSamples &s = samples[pixelOf[size_t(j)]];
-            s.sum += value;
-            if ((k & 1u) == 0) s.evenSum += value;
+            pixelOf[size_t(lanes)] = i;
+            sampleOf[size_t(lanes++)] = k;
+            if (lanes == Tracer::kPacketSize) traceLanes();
         }
     }
+    if (lanes > 0) traceLanes();
     m_costs[size_t(shared)].rays += m_rays.total() - raysBefore;
     for (int i = 0; i < count; ++i) {
         // As addSamples(): a pixel counts once per call, and only if it took samples.

@@ -27,16 +27,25 @@ namespace mvcl::detail {
 glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed);
 
 /// Running sums of one pixel's samples. The even-numbered samples are also summed on their
-/// own: their mean against the mean of all is the error estimate of adaptive sampling.
+/// own: the even and the odd samples are two half-images, whose difference estimates the
+/// pixel's error (adaptive sampling, and the image's estimated relMSE).
 struct PixelSamples {
     glm::vec3 sum{0.f};
     glm::vec3 evenSum{0.f};
     uint32_t count = 0;
+    uint32_t rays = 0; ///< rays traced for these samples: what one more sample costs, on average
 
     glm::vec3 mean() const { return count ? sum / float(count) : glm::vec3(0.f); }
     /// |I − A|₁ / √(ε + I_r + I_g + I_b), I the mean of all samples, A of the even ones;
     /// +∞ with fewer than two samples.
     float relativeError() const;
+    /// The squared error of mean() relative to its value, as the image's relMSE counts it,
+    /// estimated from the even samples' mean E (a of them) and the odd ones' O (b): per channel
+    /// (E − O)²·ab/n² over (mean² + 0.01), averaged over the channels; the variance of the mean
+    /// were the halves independent. They are interleaved points of one R2 sequence, whose
+    /// errors partly cancel in the mean, so this is an upper estimate (docs/architecture.md).
+    /// Meaningful with two samples or more (0 below).
+    float relativeMse() const;
 };
 
 /// Traces samples of pixels under a policy map and charges rays, pixels and time to its

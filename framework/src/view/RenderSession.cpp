@@ -75,11 +75,14 @@ void RenderSession::setProgressCallback(std::function<void(float)> callback) { d
 
 RenderPassStats RenderSession::renderPass() { return d->renderPass(); }
 
-RenderPassStats RenderSession::renderUntilIdle() {
+RenderPassStats RenderSession::renderUntilIdle() { return renderUntilIdle({}); }
+
+RenderPassStats RenderSession::renderUntilIdle(const std::function<void(const RenderPassStats &)> &afterPass) {
     RenderPassStats total;
     for (;;) {
         const RenderPassStats pass = renderPass();
         if (pass.kind == PassKind::Idle) break;
+        if (afterPass) afterPass(pass);
         total.kind = pass.kind;
         total.wasCancelled = total.wasCancelled || pass.wasCancelled;
         total.pixelsRestarted += pass.pixelsRestarted;
@@ -178,6 +181,12 @@ std::vector<uint32_t> RenderSession::sampleCounts() const {
 }
 
 std::vector<float> RenderSession::errorEstimates() const { return d->errors; }
+
+std::vector<uint32_t> RenderSession::rayCounts() const {
+    std::vector<uint32_t> rays(d->samples.size());
+    for (size_t i = 0; i < rays.size(); ++i) rays[i] = d->samples[i].rays;
+    return rays;
+}
 
 const PolicyMap &RenderSession::policyMap() const { return d->map; }
 

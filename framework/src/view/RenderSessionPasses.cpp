@@ -60,9 +60,11 @@ ConvergenceStats RenderSession::Private::summarise() const {
     ConvergenceStats c;
     if (tileSummaries.empty()) return c;
     c.minSamples = std::numeric_limits<int>::max();
-    uint64_t countSum = 0, withError = 0;
-    double errorSum = 0.0;
+    uint64_t countSum = 0, withError = 0, withoutEstimate = 0;
+    double errorSum = 0.0, relativeMseSum = 0.0;
     for (const TileSummary &t : tileSummaries) {
+        relativeMseSum += t.relativeMseSum;
+        withoutEstimate += t.withoutEstimate;
         c.minSamples = std::min(c.minSamples, int(t.minCount));
         c.maxSamples = std::max(c.maxSamples, int(t.maxCount));
         countSum += t.countSum;
@@ -73,6 +75,7 @@ ConvergenceStats RenderSession::Private::summarise() const {
     }
     c.meanSamples = double(countSum) / double(pixelCount());
     c.meanError = withError ? errorSum / double(withError) : 0.0;
+    if (withoutEstimate == 0) c.estimatedRelativeMse = relativeMseSum / double(pixelCount());
     c.elapsedSeconds = std::chrono::duration<double>(Clock::now() - resetTime).count();
     c.isConverged = !needsSamples.load();
     if (!c.isConverged && !hasActivePixels()) c.activePixels = 0;
@@ -131,10 +134,10 @@ float RenderSession::Private::priorityOf(int x, int y) const {
     if (count >= samplesWanted()) return 0.f;
     if (settings.sampling != SamplingMode::Adaptive || settings.targetError <= 0.f) return INFINITY;
     if (count < uint32_t(settings.minSamplesPerPixel)) return INFINITY;
-    return errorPriority(x, y, count);
+    return errorPriority(x, y, samples[i].rays);
 }
 
-float RenderSession::Private::errorPriority(int x, int y, uint32_t count) const {
+float RenderSession::Private::errorPriority(int x, int y, uint32_t rays) const {
     // Dilated: a pixel next to one whose estimate is above the target keeps sampling, so that
     // an edge whose pixels happened to agree so far is not left behind.
     float worst = 0.f;
@@ -148,7 +151,8 @@ float RenderSession::Private::errorPriority(int x, int y, uint32_t count) const 
         }
     }
     if (worst <= settings.targetError) return 0.f;
-    return worst * worst / float(count); // +∞ next to a pixel without an estimate: it waits for it
+    // +∞ next to a pixel without an estimate: it waits for it. Every sample costs a ray at least.
+    return worst * worst / float(std::max(rays, 1u));
 }
 
 void RenderSession::Private::updateActive(const PixelRect &area) {
@@ -176,8 +180,8 @@ void RenderSession::Private::summariseTile(int tile) {
     const uint32_t wanted = samplesWanted();
     const bool byError = settings.sampling == SamplingMode::Adaptive && settings.targetError > 0.f;
     const uint32_t minimum = uint32_t(settings.minSamplesPerPixel);
-    const auto priorityAt = [&](int x, int y, uint32_t count) {
-        return count >= wanted ? 0.f : !byError || count < minimum ? INFINITY : errorPriority(x, y, count);
+    const auto priorityAt = [&](int x, int y, const detail::PixelSamples &s) {
+        return s.count >= wanted ? 0.f : !byError || s.count < minimum ? INFINITY : errorPriority(x, y, s.rays);
     };
     TileSummary summary;
     summary.minCount = kNoActivePixel;
@@ -195,9 +199,12 @@ void RenderSession::Private::summariseTile(int tile) {
                 summary.errorSum += errors[i];
                 summary.maxError = std::max(summary.maxError, errors[i]);
                 ++summary.withError;
+                summary.relativeMseSum += samples[i].relativeMse();
+            } else {
+                ++summary.withoutEstimate;
             }
             if (borderRow || x == r.x0 || x == r.x1 - 1) continue;
-            const float p = priority[i] = priorityAt(x, y, count);
+            const float p = priority[i] = priorityAt(x, y, samples[i]);
             if (p > 0.f) ++summary.interiorActive;
             if (p == INFINITY) summary.interiorFewestUrgent = std::min(summary.interiorFewestUrgent, count);
             else summary.interiorTopPriority = std::max(summary.interiorTopPriority, p);

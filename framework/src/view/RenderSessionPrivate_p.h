@@ -92,10 +92,13 @@ struct RenderSession::Private {
     std::vector<float> errors;
     /// Per pixel, what one more sample is worth: 0, it wants no more; +∞, it wants them whatever
     /// its estimate ("urgent": below the minimum, or not Adaptive); else (Adaptive) its dilated
-    /// estimate e squared over its sample count n. With e² ≈ σ²/n, one more sample cuts the
-    /// pixel's expected squared error σ²/n by about σ²/n² ≈ e²/n, so serving the highest first spends samples where
-    /// they cut the image's error most (samples end up about proportional to a pixel's standard
-    /// deviation, the allocation that minimises the summed squared error for a sample budget).
+    /// estimate e squared over the rays r its n samples cost. With e² ≈ σ²/n, one more sample
+    /// cuts the pixel's expected squared error σ²/n by about σ²/n² ≈ e²/n and costs r/n rays,
+    /// so e²/r is the error removed per ray: serving the highest first spends rays where they cut
+    /// the image's error most. Samples end up about proportional to σ/√(r/n), the allocation
+    /// that minimises the summed squared error for a budget of rays (the cost in rays, not in
+    /// time, keeps the image independent of timing and thread count). A pixel under a mirror
+    /// costs several rays a sample, one on the background one.
     std::vector<float> priority;
     std::vector<uint8_t> changed;  ///< scratch: pixels whose policy changed
     int tilesX = 0, tilesY = 0;
@@ -110,6 +113,8 @@ struct RenderSession::Private {
         float maxError = 0.f;   ///< of the pixels with an estimate (≥ 2 samples)
         float worstError = 0.f; ///< of all pixels, +∞ if one has no estimate yet
         uint32_t withError = 0, activeCount = 0;
+        double relativeMseSum = 0.0;   ///< PixelSamples::relativeMse() of the pixels with ≥ 2 samples
+        uint32_t withoutEstimate = 0;  ///< pixels with fewer than 2 samples
         /// Pixels off the tile's border: their dilation reads this tile's estimates only.
         uint32_t interiorActive = 0, interiorFewestUrgent = 0;
         float interiorTopPriority = 0.f;
@@ -155,9 +160,9 @@ struct RenderSession::Private {
     void restartPixels(const PixelRect &area, const std::vector<uint8_t> *only);
     uint32_t samplesWanted() const;
     float priorityOf(int x, int y) const;
-    /// priorityOf() of a pixel with `count` samples, fewer than wanted and at least the
-    /// adaptive minimum: its neighbourhood's worst error against the target.
-    float errorPriority(int x, int y, uint32_t count) const;
+    /// priorityOf() of a pixel with fewer samples than wanted and at least the adaptive minimum,
+    /// whose samples cost `rays`: its neighbourhood's worst error against the target.
+    float errorPriority(int x, int y, uint32_t rays) const;
     void updateActive(const PixelRect &area);
     void updateActiveTiles(const std::vector<int> &tiles);
     void summariseTile(int tile);

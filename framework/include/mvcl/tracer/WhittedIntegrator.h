@@ -65,10 +65,12 @@ public:
     /// (Tracer::anyHits with per-ray ranges) where occluders are opaque, and the reflected and
     /// refracted rays of all points form the next waves, traced in packets of their kind
     /// (Tracer::closestHits) down to the trace depth. radiance[i] is the value of
-    /// radianceFromHit() for ray i, bit for bit, and the same rays are counted. Throws mvcl::Error("integrator", ...) for more than
-    /// Tracer::kPacketSize rays or fewer hits or values than rays.
+    /// radianceFromHit() for ray i, bit for bit, and counters[i] gets the rays that value cost
+    /// (what radianceFromHit() would have added: adaptive sampling weighs a pixel's error by its
+    /// cost). Throws mvcl::Error("integrator", ...) for more than Tracer::kPacketSize rays or
+    /// fewer hits, values or counters than rays.
     void radianceFromHits(std::span<const Ray> primaryRays, std::span<const Hit> primaryHits, uint32_t hitMask,
-                          const RayPolicy &policy, const IntegratorPlan &plan, RayCounters &counters,
+                          const RayPolicy &policy, const IntegratorPlan &plan, std::span<RayCounters> counters,
                           std::span<glm::vec3> radiance) const;
 
 private:
@@ -109,10 +111,10 @@ private:
     /// The stream's step for up to Tracer::kPacketSize prepared points (bit i of `lit`: points[i]
     /// goes on to the light loop): their shadow rays toward each light as packets, then litColor();
     /// a finished colour goes to to[i], a point with secondary rays waits in `scratch` and its
-    /// rays join the next waves.
-    void shadeBatch(std::span<ShadingPoint> points, uint32_t lit, const Destination *to, const RayPolicy &policy,
-                    const IntegratorPlan &plan, RayCounters &counters, StreamScratch &scratch,
-                    std::span<glm::vec3> radiance) const;
+    /// rays join the next waves. root[i]: the primary ray whose counters[] point i's rays go to.
+    void shadeBatch(std::span<ShadingPoint> points, uint32_t lit, const Destination *to, const int *root,
+                    const RayPolicy &policy, const IntegratorPlan &plan, std::span<RayCounters> counters,
+                    StreamScratch &scratch, std::span<glm::vec3> radiance) const;
     /// Hands a finished value to where it goes: a waiting point's slot, or a primary sample
     /// (through finishSample()).
     void deliver(const Destination &to, const glm::vec3 &value, const RayPolicy &policy, const IntegratorPlan &plan,

@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace mvcl {
@@ -75,6 +76,11 @@ struct ConvergenceStats {
     int maxSamples = 0;
     double meanError = 0.0; ///< mean over pixels with ≥ 2 samples of the per-pixel estimate
     double maxError = 0.0;
+    /// The image's relMSE (mean over pixels and channels of (I − R)² / (R² + 0.01), R the
+    /// converged image) as estimated without R: per pixel, the variance of its mean from the
+    /// difference of its even and odd samples' means (two independent half-images). Empty until
+    /// every pixel has two samples.
+    std::optional<double> estimatedRelativeMse;
     uint64_t activePixels = 0; ///< pixels that still want samples
     double elapsedSeconds = 0.0; ///< since the last reset of every pixel
     bool isConverged = false;    ///< no pixel wants samples: the session is idle
@@ -111,6 +117,9 @@ public:
     /// Runs passes until the session is idle; returns the passes' stats summed (kind: the last
     /// pass's).
     RenderPassStats renderUntilIdle();
+    /// renderUntilIdle(), calling `afterPass` with each pass's own stats as it ends (a
+    /// ConvergenceLog row, a progress line), on the calling thread.
+    RenderPassStats renderUntilIdle(const std::function<void(const RenderPassStats &)> &afterPass);
     /// True when the next pass would do something.
     bool hasWork() const;
 
@@ -140,6 +149,9 @@ public:
     /// thread that runs the passes, or after stop()).
     std::vector<uint32_t> sampleCounts() const;
     std::vector<float> errorEstimates() const;
+    /// Per pixel, the rays its accumulated samples cost (row-major, as sampleCounts()):
+    /// adaptive sampling serves the pixels whose estimate² over these rays is highest.
+    std::vector<uint32_t> rayCounts() const;
     /// The policy map the accumulated samples were taken under.
     const PolicyMap &policyMap() const;
 
