@@ -16,6 +16,7 @@ packages=(
   xvfb xauth libgl1-mesa-dri              # the viewer's end-to-end test: a real window, Mesa llvmpipe
   libembree-dev libbenchmark-dev   # optional peers for mvcl-bench
   libopenimageio-dev               # mvcl-imageio-oiio, the optional module for .tif and other formats
+  libavformat-dev libavcodec-dev libswscale-dev   # mvcl-video-ffmpeg, the optional module for H.264 videos
 )
 
 missing=()

@@ -22,8 +22,18 @@ constexpr const char *kUsage = R"(usage: mvcl-render [options] <model.gltf | mod
 
 Scenes:  builtin:cube-in-cube (the default scene of the paper), builtin:onion)";
 
-constexpr const char *kExitCodes = R"(Exit codes: 0 ok, 1 bad input file (scene, layer rules, lens stack), 2 bad arguments (including
---lens), 3 image, --save-lenses or --convergence-log file not written, 4 internal error.)";
+constexpr const char *kExitCodes = R"(Exit codes: 0 ok, 1 bad input file (scene, layer rules, lens stack, animation), 2 bad arguments
+(including --lens, --sweep), 3 image, frames, video, --save-lenses or --convergence-log file not
+written, 4 internal error, 130 interrupted (the frames written so far are complete).)";
+
+/// "A-B" (inclusive) or "A": frame numbers from 0.
+std::pair<int, int> parseFrameRange(std::string_view text) {
+    const std::size_t dash = text.find('-');
+    const int first = parseWholeNumber(text.substr(0, dash), 0, 1 << 24);
+    const int last = dash == std::string_view::npos ? first : parseWholeNumber(text.substr(dash + 1), 0, 1 << 24);
+    if (last < first) throw BadValue("expects A-B with A <= B, got " + quotedValue(text));
+    return {first, last};
+}
 
 /// The options of mvcl-render bound to `cl`: one table for the parser and --help.
 std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::string> &scenes) {
@@ -112,6 +122,31 @@ std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::stri
                   "run every integrator stage even where the scene and lenses do not need\n"
                   "it (shadow rays nothing can block, ...), to measure what skipping saves;\n"
                   "the image is the same");
+    app->add_option("--animate", cl.animationFile,
+                    "render an animation file (keyframes of the camera and of the session's lenses)\n"
+                    "to numbered images (-o frames/%04d.png) or a video (-o clip.mp4)")
+        ->type_name("FILE");
+    app->add_option_function<std::string>(
+           "--turntable", [&](const std::string &text) { cl.turntableFrames = parseWholeNumber(text, 1, 1 << 20); },
+           "animate one turn of the camera about its up axis in N frames (the last\n"
+           "frame is one step before the first: the clip loops)")
+        ->type_name("N")->check(wholeNumberIn(1, 1 << 20));
+    app->add_option("--sweep", cl.sweeps,
+                    "animate a lens property from one value to another over the frames,\n"
+                    "repeatable: LENS.PROPERTY=FROM:TO, LENS a label or an index (0 = bottom),\n"
+                    "e.g. --sweep reveal.distance=0:4")
+        ->type_name("SPEC")->allow_extra_args(false);
+    app->add_option("--frame-count", cl.frameCount, "frames of a --sweep without --turntable (default 30)")
+        ->type_name("N")->check(wholeNumberIn(1, 1 << 20));
+    app->add_option_function<std::string>(
+           "--frame-rate", [&](const std::string &text) { cl.frameRate = parseFiniteNumber(text); },
+           "frames per second of an animation (default: the file's, else 30)")
+        ->type_name("FPS")->check(numberBetween(0.0, 1000.0, "in (0, 1000)"));
+    app->add_option_function<std::string>(
+           "--frames", [&](const std::string &text) { cl.frameRange = parseFrameRange(text); },
+           "render only frames A to B of the animation (numbered from 0, as the\n"
+           "files are), e.g. to split a long one across machines")
+        ->type_name("A-B")->check(validatorFrom([](const std::string &text) { parseFrameRange(text); }, ""));
     app->add_flag_callback("--no-progress", [&] { cl.progress = false; }, "no progress bar on stderr");
     app->add_flag("--version", cl.version, "version");
     return app;
@@ -138,6 +173,15 @@ RenderCommandLine parseRenderCommandLine(const std::vector<std::string> &args) {
         usageError("--max-spp " + std::to_string(*cl.maxSamplesPerPixel) + " is below --spp " +
                    std::to_string(cl.samplesPerPixel));
     if (cl.eye && cl.target && *cl.eye == *cl.target) usageError("--eye and --target are the same point");
+    if (!cl.animationFile.empty() && (cl.turntableFrames || !cl.sweeps.empty()))
+        usageError("--animate renders its file; --turntable and --sweep make an animation of their own");
+    if (cl.turntableFrames && app->count("--frame-count"))
+        usageError("--turntable N sets the frame count already");
+    if (isAnimation(cl) && !cl.convergenceLogFile.empty())
+        usageError("--convergence-log logs the passes of one image, not of an animation's frames");
+    if (!isAnimation(cl))
+        for (const char *option : {"--frames", "--frame-count", "--frame-rate"})
+            if (app->count(option)) usageError(std::string(option) + " needs --animate, --turntable or --sweep");
     return cl;
 }
 

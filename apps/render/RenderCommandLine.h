@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -15,8 +16,9 @@ enum ExitCode : int {
     kExitOk = 0,
     kExitBadInput = 1,  ///< the scene, a layer-rule or a lens-stack file could not be loaded
     kExitUsage = 2,     ///< bad command-line arguments (including a bad --lens spec)
-    kExitOutput = 3,    ///< the image or the --save-lenses file could not be written
+    kExitOutput = 3,    ///< the image, a frame, the video or the --save-lenses file could not be written
     kExitInternal = 4,  ///< a bug: an unexpected exception
+    kExitInterrupted = 130, ///< Ctrl+C (SIGINT) or SIGTERM during an animation, as shells report it
 };
 
 struct RenderCommandLine {
@@ -51,7 +53,19 @@ struct RenderCommandLine {
     bool progress = true;
     bool forceAllStages = false;     ///< run every integrator stage, needed or not (--force-all-stages)
     bool defaultLights = true;       ///< light a file without lights with the default rig (--no-default-lights)
+    // Animations: a file, or the shortcuts that make one.
+    std::string animationFile;       ///< --animate: animation JSON over the session's lenses
+    std::optional<int> turntableFrames; ///< --turntable N: one turn in N frames
+    std::vector<std::string> sweeps; ///< --sweep 'LENS.PROPERTY=FROM:TO', repeatable
+    int frameCount = 30;             ///< --frame-count: frames of --sweep without --turntable
+    std::optional<double> frameRate; ///< --frame-rate: frames per second (the file's, else 30)
+    std::optional<std::pair<int, int>> frameRange; ///< --frames A-B, inclusive
 };
+
+/// Whether the command line renders an animation rather than one image.
+inline bool isAnimation(const RenderCommandLine &cl) {
+    return !cl.animationFile.empty() || cl.turntableFrames || !cl.sweeps.empty();
+}
 
 /// Whether samples accumulate past --spp: --adaptive, or any of the budgets.
 inline bool isRefining(const RenderCommandLine &cl) {

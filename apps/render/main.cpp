@@ -1,6 +1,7 @@
 // mvcl-render: the headless shell. Loads a scene, builds the tracer, renders, writes the image,
 // prints what it did. All the work is in the framework; this file only wires it up.
 
+#include "AnimationCommand.h"
 #include "ProgressBar.h"
 #include "RenderCommandLine.h"
 
@@ -277,6 +278,9 @@ int run(const RenderCommandLine &cl) {
     const ViewRequest request = viewRequest(cl);
     const ViewSetup setup = ViewSetup::prepare(request, registry);
     const LensStack &lenses = setup.session.lenses;
+    // Read before the scene loads: a bad animation file fails at once, not after the BVH build.
+    const std::optional<Animation> animation =
+        isAnimation(cl) ? std::optional<Animation>(commandLineAnimation(cl, lenses)) : std::nullopt;
 
     const Scene scene = loadScene(setup.source, setup.loadOptions);
     if (cl.info) {
@@ -304,6 +308,9 @@ int run(const RenderCommandLine &cl) {
     base.query(RayType::Primary).layerMask = setup.session.visibleLayers;
     session.setBasePolicy(base);
     session.setLensStack(lenses);
+    if (animation)
+        return renderAnimation(cl, *animation, session, lenses, camera, scene,
+                               cl.output.empty() ? "out/" + sceneStem(setup.source) + "/%04d.png" : cl.output);
     // Too many overlapping clip volumes would render a wrong cut; say so instead of rendering.
     LensContext lensContext = LensContext::forScene(scene);
     lensContext.camera = {"", camera.eye(), camera.target(), camera.up(), camera.verticalFovDegrees()};

@@ -90,6 +90,7 @@ Viewer::Viewer(GLFWwindow *window, const ViewerOptions &options) : m_window(wind
 }
 
 Viewer::~Viewer() {
+    stopRecording();
     stopHistogramWorker();
     if (m_controller) m_controller->renderSession().stop();
     glfwSetDropCallback(m_window, nullptr);
@@ -125,7 +126,9 @@ void Viewer::update() {
         handle(drop);
     }
     runScript();
+    updatePlayback();
     takeImage();
+    recordFrame();
 }
 
 void Viewer::takeImage() {

@@ -7,7 +7,9 @@
 #include "ViewerOptions.h"
 #include "ViewerScript.h"
 
+#include <mvcl/controller/AnimationPlayer.h>
 #include <mvcl/controller/Controller.h>
+#include <mvcl/controller/ViewRecorder.h>
 #include <mvcl/lens/LensRegistry.h>
 #include <mvcl/lens/PolicyMap.h>
 #include <mvcl/view/ConvergenceHistory.h>
@@ -78,6 +80,18 @@ private:
     const PolicyMap &pickingMap();
     void drawOpenPopup();
     template <class Edit> void edit(Edit &&edit);
+    // ViewerAnimation.cpp
+    void drawAnimationPanel();
+    /// Adds the camera and the selected lens at `seconds` to the animation file (made if missing).
+    void addKeyframe(const std::string &file, double seconds);
+    void startPlaying(const std::string &file);
+    /// Shows the animation's time on the view (lenses and camera to the render session, no edit).
+    void updatePlayback();
+    void stopPlaying();
+    void startRecording(const std::string &target, double frameRate);
+    /// Hands the view's image (lens outlines, no panels) to the recorder.
+    void recordFrame();
+    void stopRecording();
     // ViewerScripting.cpp
     void runScript();
     bool runCommand(const ScriptCommand &command);
@@ -124,6 +138,17 @@ private:
     double m_lastFrameMs = 0.0;
     std::deque<double> m_frameTimes;
     ConvergenceHistory m_convergence; ///< the focused view's estimated error against time
+
+    // Animation: keyframes into a file, playback on the view, recording of what the view shows.
+    std::string m_animationFile = "animation.json";
+    float m_keyframeSeconds = 0.f;
+    std::optional<AnimationPlayer> m_player; ///< while playing
+    Clock::time_point m_playStart;
+    int m_playScriptLine = -1; ///< the script's play command that started the playback
+    std::string m_recordTarget = "out/recording/%04d.png";
+    float m_recordFrameRate = 30.f;
+    std::optional<ViewRecorder> m_recorder; ///< while recording
+    Clock::time_point m_recordStart;
 
     // Script replay.
     std::optional<ViewerScript> m_script;

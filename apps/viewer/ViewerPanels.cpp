@@ -35,7 +35,7 @@ void Viewer::edit(Edit &&change) {
 }
 
 void Viewer::drawUi() {
-    forwardInput();
+    if (!m_player) forwardInput(); // a playing animation owns the view until it ends
     drawImage();
     drawLensOverlays();
     drawPanels();
@@ -58,6 +58,7 @@ void Viewer::drawPanels() {
     if (ImGui::CollapsingHeader("Layers", ImGuiTreeNodeFlags_DefaultOpen)) drawLayersPanel();
     if (ImGui::CollapsingHeader("Under the pointer", ImGuiTreeNodeFlags_DefaultOpen)) drawPickPanel();
     if (ImGui::CollapsingHeader("Depth histogram")) drawHistogramPanel();
+    if (ImGui::CollapsingHeader("Animation")) drawAnimationPanel();
     // Every frame, open or not, so that the curve has every pass when the panel opens.
     m_convergence.add(m_controller->renderSession().convergence(), m_controller->renderSession().passCount());
     if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel();

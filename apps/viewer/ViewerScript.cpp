@@ -26,7 +26,8 @@ const std::map<std::string, Arity> &commandTable() {
         {"wait-frames", {1, 1}},   {"screenshot", {1, 1}},      {"window-screenshot", {1, 1}},
         {"save-session", {1, 1}},  {"load-session", {1, 1}},    {"open", {1, 1}},
         {"expect-lenses", {1, 1}}, {"bench-begin", {1, 1}},     {"bench-end", {0, 0}},
-        {"quit", {0, 1}},
+        {"add-keyframe", {2, 2}},  {"play", {1, 1}},            {"record", {2, 2}},
+        {"stop-recording", {0, 0}}, {"quit", {0, 1}},
     };
     return table;
 }
@@ -109,6 +110,10 @@ window-screenshot FILE        the whole window, panels included
 save-session FILE | load-session FILE | open MODEL
 expect-lenses N               fail (exit 1) unless the stack holds N lenses
 bench-begin NAME | bench-end  UI frame times between them (median, 95th percentile, worst) on stdout
+add-keyframe FILE SECONDS     the camera and the selected lens into animation FILE at SECONDS
+play FILE                     preview animation FILE on the view (input waits until it ends)
+record TARGET FPS             record the view to frames/%04d.png or a video at FPS frames per second
+stop-recording                finish the recording
 quit [CODE]                   exit with CODE (default 0)
 )";
 }

@@ -162,6 +162,19 @@ bool Viewer::runCommand(const ScriptCommand &c) {
         }
         std::fflush(stdout);
         m_benchName.clear();
+    } else if (name == "add-keyframe") {
+        addKeyframe(c.word(0), c.number(1));
+    } else if (name == "play") {
+        // Starts once, then holds the script until the animation has played.
+        if (m_playScriptLine != c.line) {
+            m_playScriptLine = c.line;
+            startPlaying(c.word(0));
+        }
+        if (m_player) return false;
+    } else if (name == "record") {
+        startRecording(c.word(0), c.number(1));
+    } else if (name == "stop-recording") {
+        stopRecording();
     } else if (name == "quit") {
         m_exitCode = c.args.empty() ? 0 : c.integer(0);
         m_quit = true;

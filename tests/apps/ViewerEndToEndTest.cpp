@@ -99,3 +99,35 @@ TEST(ViewerEndToEnd, ABrokenScriptOrSessionIsAClearErrorNotACrash) {
     EXPECT_EQ(broken.exitCode, 0) << "the viewer keeps running on its default view\n" << broken.output;
     EXPECT_NE(broken.output.find("broken.json"), std::string::npos) << broken.output;
 }
+
+// Keyframes added from the view go to an animation file; playing it back while recording the
+// view writes frames at the recording's fixed rate, the size of the view without the panels.
+TEST(ViewerEndToEnd, KeyframesAddedFromTheViewPlayBackWhileTheViewIsRecorded) {
+    ASSERT_EQ(runCommand("command -v xvfb-run").exitCode, 0) << "xvfb-run is missing (scripts/bootstrap.sh installs it)";
+    const fs::path dir = viewerDir() / "animation";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path animation = dir / "anim.json", frames = dir / "rec";
+    writeScript(dir / "animate.txt", "wait-converged\nadd-lens layer 0.5 0.5\nselect 0\nadd-keyframe " +
+                                         animation.string() + " 0\nkey 3\nset-property 0 distance 0.05\n"
+                                         "add-keyframe " + animation.string() + " 1\nrecord " +
+                                         (frames / "%04d.png").string() + " 10\nplay " + animation.string() +
+                                         "\nstop-recording\nexpect-lenses 1\nquit\n");
+    const CommandResult run = runViewer(quoted(dataPath("models/HRA_Kidney_Female_Left/VH_F_Kidney_L.glb")) +
+                                        " --script " + quoted((dir / "animate.txt").string()));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    std::ifstream file(animation);
+    const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("\"time\": 1.0"), std::string::npos) << text;
+    EXPECT_NE(text.find("\"distance\": \"0.05\""), std::string::npos) << text;
+    int recorded = 0;
+    for (const auto &entry : fs::directory_iterator(frames)) {
+        const mvcl::Framebuffer image = mvcl::readImage(entry.path());
+        EXPECT_EQ(image.width(), 900) << entry.path();
+        EXPECT_EQ(image.height(), 720) << entry.path();
+        ++recorded;
+    }
+    // The animation plays for one second at least, recorded at 10 frames per second.
+    EXPECT_GE(recorded, 10);
+    EXPECT_TRUE(fs::exists(frames / "0000.png"));
+}

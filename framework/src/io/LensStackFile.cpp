@@ -1,118 +1,25 @@
 #include <mvcl/io/LensStackFile.h>
 
+#include "JsonFile_p.h"
+
 #include <mvcl/core/Error.h>
 #include <mvcl/lens/LensRegistry.h>
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
-#include <cerrno>
-#include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <fstream>
 #include <span>
-#include <sstream>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <vector>
 
 namespace mvcl {
 
 namespace {
 
-// Ordered, so written files keep the natural key order and properties stay in table order.
-using Json = nlohmann::ordered_json;
+using namespace detail; // the JSON file helpers
 
 constexpr int kFileVersion = 1;
 
 constexpr std::string_view kRegionKeys[] = {"shape",   "center",  "size",        "points",
                                             "feather", "outline", "outlineColor"};
-
-std::string joined(std::span<const std::string_view> names) {
-    std::string text;
-    for (std::string_view name : names) text.append(text.empty() ? "" : ", ").append(name);
-    return text;
-}
-
-/// Where a value sits, for error messages: the file (or option) and the JSON path in it.
-/// On the command line the structure ("region", "properties") is implicit, so only leaf keys
-/// show up in the path.
-struct JsonLocation {
-    std::string source;
-    std::string path;
-    bool commandLine = false;
-
-    JsonLocation key(std::string_view name) const {
-        std::string child = path;
-        child.append(path.empty() ? "" : (commandLine ? ": " : ".")).append(name);
-        return {source, std::move(child), commandLine};
-    }
-    JsonLocation section(std::string_view name) const { return commandLine ? *this : key(name); }
-    JsonLocation index(std::size_t i) const {
-        return {source, path + "[" + std::to_string(i) + "]", commandLine};
-    }
-    [[noreturn]] void fail(const std::string &problem) const {
-        throw Error(source, path.empty() ? problem : path + ": " + problem);
-    }
-};
-
-const Json &expectObject(const Json &value, const JsonLocation &where) {
-    if (!value.is_object()) where.fail(std::string("expected an object, got ") + value.type_name());
-    return value;
-}
-
-void rejectUnknownKeys(const Json &object, std::span<const std::string_view> known,
-                       const JsonLocation &where) {
-    for (const auto &[key, value] : object.items())
-        if (std::find(known.begin(), known.end(), key) == known.end())
-            where.fail("unknown key '" + key + "' (known: " + joined(known) + ")");
-}
-
-std::string readString(const Json &value, const JsonLocation &where) {
-    if (!value.is_string()) where.fail(std::string("expected a string, got ") + value.type_name());
-    return value.get<std::string>();
-}
-
-bool readBool(const Json &value, const JsonLocation &where) {
-    if (!value.is_boolean()) where.fail(std::string("expected true or false, got ") + value.dump());
-    return value.get<bool>();
-}
-
-float readNumber(const Json &value, const JsonLocation &where) {
-    if (!value.is_number()) where.fail("expected a number, got " + value.dump());
-    const double number = value.get<double>();
-    if (!std::isfinite(float(number))) where.fail("number " + value.dump() + " is out of range");
-    return float(number);
-}
-
-template <int N>
-glm::vec<N, float> readVector(const Json &value, const JsonLocation &where) {
-    if (!value.is_array() || value.size() != std::size_t(N))
-        where.fail("expected an array of " + std::to_string(N) + " numbers, got " + value.dump());
-    glm::vec<N, float> v;
-    for (int i = 0; i < N; ++i) v[i] = readNumber(value[std::size_t(i)], where.index(std::size_t(i)));
-    return v;
-}
-
-/// A property value as the text its declaration parses: strings as they are, numbers and
-/// booleans in their JSON spelling, arrays as comma-separated elements ([r,g,b], [1,2]).
-std::string propertyText(const Json &value, const JsonLocation &where) {
-    if (value.is_string()) return value.get<std::string>();
-    if (value.is_number() || value.is_boolean()) return value.dump();
-    if (!value.is_array())
-        where.fail(std::string("expected a string, number, boolean or array, got ") + value.type_name());
-    std::string text;
-    for (std::size_t i = 0; i < value.size(); ++i) {
-        const Json &element = value[i];
-        if (element.is_array() || element.is_object() || element.is_null())
-            where.index(i).fail("expected a string or number, got " + element.dump());
-        text.append(i ? "," : "").append(element.is_string() ? element.get<std::string>() : element.dump());
-    }
-    return text;
-}
 
 LensStackCamera readCamera(const Json &value, const JsonLocation &where) {
     expectObject(value, where);
@@ -186,9 +93,7 @@ LensRegion readRegion(const Json &value, const JsonLocation &where) {
 }
 
 std::string unknownPropertyMessage(const std::string &key, const Lens &lens, bool commandLine) {
-    std::string known;
-    for (const PropertyDecl &decl : lens.properties()) known.append(known.empty() ? "" : ", ").append(decl.name);
-    std::string message = "unknown property '" + key + "' of lens '" + lens.typeName() + "' (known: " + known + ")";
+    std::string message = detail::unknownPropertyMessage(key, lens);
     if (commandLine) message += "; region keys: " + joined(kRegionKeys) + "; label, enabled";
     return message;
 }
@@ -298,23 +203,6 @@ LensStackDescription readDescription(const Json &document, const LensRegistry &r
     return description;
 }
 
-/// The double that prints as the shortest text reading back to `value` as a float, so files
-/// say 0.3 and not 0.30000001192092896.
-double shortestDouble(float value) {
-    char text[32];
-    const auto printed = std::to_chars(text, text + sizeof text, value);
-    double result = value;
-    std::from_chars(text, printed.ptr, result);
-    return result;
-}
-
-template <int N>
-Json vectorJson(const glm::vec<N, float> &v) {
-    Json array = Json::array();
-    for (int i = 0; i < N; ++i) array.push_back(shortestDouble(v[i]));
-    return array;
-}
-
 const char *shapeName(LensRegion::Shape shape) {
     switch (shape) {
     case LensRegion::Shape::Rectangle: return "rectangle";
@@ -386,82 +274,10 @@ Json descriptionJson(const LensStackDescription &description) {
     return json;
 }
 
-/// Indented JSON with arrays of numbers and points kept on one line, as a person would write
-/// these files ("center": [0.5, 0.5] rather than one number per line).
-void appendPretty(const Json &value, int indent, std::string &out) {
-    if (value.is_object() && !value.empty()) {
-        const std::string inner(std::size_t(indent + 2), ' ');
-        out += "{\n";
-        bool first = true;
-        for (const auto &[key, member] : value.items()) {
-            out.append(first ? "" : ",\n").append(inner).append(Json(key).dump()).append(": ");
-            appendPretty(member, indent + 2, out);
-            first = false;
-        }
-        out.append("\n").append(std::size_t(indent), ' ').append("}");
-    } else if (value.is_array() && std::ranges::any_of(value, [](const Json &e) { return e.is_object(); })) {
-        const std::string inner(std::size_t(indent + 2), ' ');
-        out += "[\n";
-        for (std::size_t i = 0; i < value.size(); ++i) {
-            out.append(i ? ",\n" : "").append(inner);
-            appendPretty(value[i], indent + 2, out);
-        }
-        out.append("\n").append(std::size_t(indent), ' ').append("]");
-    } else if (value.is_array() && !value.empty()) {
-        out += "[";
-        for (std::size_t i = 0; i < value.size(); ++i) {
-            out.append(i ? ", " : "");
-            appendPretty(value[i], indent, out);
-        }
-        out += "]";
-    } else {
-        out += value.dump();
-    }
-}
-
 bool sameCommittedLens(const Lens &a, const Lens &b) {
     const std::shared_ptr<const LensSnapshot> snapshotA = a.snapshot(), snapshotB = b.snapshot();
     return a.typeName() == b.typeName() && a.label() == b.label() && snapshotA->enabled == snapshotB->enabled &&
            snapshotA->region == snapshotB->region && a.committedValues() == b.committedValues();
-}
-
-/// Writes everything or fails with errno set.
-bool writeAll(int fd, std::string_view text) {
-    while (!text.empty()) {
-        const ssize_t written = ::write(fd, text.data(), text.size());
-        if (written < 0 && errno == EINTR) continue;
-        if (written <= 0) return false;
-        text.remove_prefix(std::size_t(written));
-    }
-    return true;
-}
-
-/// Temporary file in the same folder (so rename is atomic), flushed to disk, then renamed over
-/// `path`: readers see the old file or the new one, never a torn one.
-void writeFileAtomically(const std::filesystem::path &path, std::string_view text) {
-    const std::string name = path.string();
-    if (path.has_parent_path()) {
-        std::error_code ec;
-        std::filesystem::create_directories(path.parent_path(), ec);
-        if (ec) throw Error(name, "cannot create folder: " + ec.message());
-    }
-    std::string temp = name + ".part-XXXXXX";
-    const int fd = ::mkstemp(temp.data());
-    if (fd < 0) throw Error(name, std::string("cannot create a temporary file next to it: ") + std::strerror(errno));
-    const auto failWith = [&](const std::string &what) {
-        const int error = errno;
-        ::unlink(temp.c_str());
-        throw Error(name, what + ": " + std::strerror(error));
-    };
-    ::fchmod(fd, 0644); // mkstemp makes 0600; a session file is an ordinary document
-    if (!writeAll(fd, text) || ::fsync(fd) != 0) {
-        const int error = errno;
-        ::close(fd);
-        errno = error;
-        failWith("write failed");
-    }
-    if (::close(fd) != 0) failWith("write failed");
-    if (::rename(temp.c_str(), name.c_str()) != 0) failWith("cannot replace the file");
 }
 
 /// Splits at commas outside brackets: "center=[0.3,0.5],feather=4" → two items.
@@ -524,28 +340,12 @@ bool operator==(const LensStackDescription &a, const LensStackDescription &b) {
 
 LensStackDescription parseLensStackJson(std::string_view text, const std::string &sourceName,
                                         const LensRegistry &registry) {
-    Json document;
-    try {
-        document = Json::parse(text);
-    } catch (const Json::exception &e) {
-        // Drop nlohmann's "[json.exception.parse_error.101] " prefix; keep line and column.
-        std::string message = e.what();
-        if (const std::size_t close = message.find("] "); message.starts_with("[json.") && close != std::string::npos)
-            message.erase(0, close + 2);
-        throw Error(sourceName, "invalid JSON: " + message);
-    }
-    return readDescription(document, registry, JsonLocation{sourceName, "", false});
+    return readDescription(parseJsonDocument(text, sourceName), registry, JsonLocation{sourceName, "", false});
 }
 
 LensStackDescription readLensStackFile(const std::filesystem::path &path, const LensRegistry &registry) {
-    const std::string name = path.string();
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw Error(name, "is a folder, not a lens-stack file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(name, std::string("cannot open the lens-stack file: ") + std::strerror(errno));
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    LensStackDescription description = parseLensStackJson(buffer.str(), name, registry);
+    LensStackDescription description =
+        parseLensStackJson(readTextFile(path, "lens-stack file"), path.string(), registry);
     if (isSceneFile(description.scene) && std::filesystem::path(description.scene).is_relative())
         description.scene = (path.parent_path() / description.scene).lexically_normal().string();
     return description;
@@ -553,9 +353,7 @@ LensStackDescription readLensStackFile(const std::filesystem::path &path, const 
 
 std::string lensStackJson(const LensStackDescription &description) {
     try {
-        std::string text;
-        appendPretty(descriptionJson(description), 0, text);
-        return text + "\n";
+        return prettyJson(descriptionJson(description)) + "\n";
     } catch (const Json::exception &e) { // e.g. a label that is not valid UTF-8
         throw Error("lens-stack file", e.what());
     }

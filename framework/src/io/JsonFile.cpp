@@ -1,0 +1,184 @@
+#include "JsonFile_p.h"
+
+#include <mvcl/lens/Lens.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace mvcl::detail {
+
+namespace {
+
+void appendPretty(const Json &value, int indent, std::string &out) {
+    if (value.is_object() && !value.empty()) {
+        const std::string inner(std::size_t(indent + 2), ' ');
+        out += "{\n";
+        bool first = true;
+        for (const auto &[key, member] : value.items()) {
+            out.append(first ? "" : ",\n").append(inner).append(Json(key).dump()).append(": ");
+            appendPretty(member, indent + 2, out);
+            first = false;
+        }
+        out.append("\n").append(std::size_t(indent), ' ').append("}");
+    } else if (value.is_array() && std::ranges::any_of(value, [](const Json &e) { return e.is_object(); })) {
+        const std::string inner(std::size_t(indent + 2), ' ');
+        out += "[\n";
+        for (std::size_t i = 0; i < value.size(); ++i) {
+            out.append(i ? ",\n" : "").append(inner);
+            appendPretty(value[i], indent + 2, out);
+        }
+        out.append("\n").append(std::size_t(indent), ' ').append("]");
+    } else if (value.is_array() && !value.empty()) {
+        out += "[";
+        for (std::size_t i = 0; i < value.size(); ++i) {
+            out.append(i ? ", " : "");
+            appendPretty(value[i], indent, out);
+        }
+        out += "]";
+    } else {
+        out += value.dump();
+    }
+}
+
+/// Writes everything or fails with errno set.
+bool writeAll(int fd, std::string_view text) {
+    while (!text.empty()) {
+        const ssize_t written = ::write(fd, text.data(), text.size());
+        if (written < 0 && errno == EINTR) continue;
+        if (written <= 0) return false;
+        text.remove_prefix(std::size_t(written));
+    }
+    return true;
+}
+
+} // namespace
+
+std::string joined(std::span<const std::string_view> names) {
+    std::string text;
+    for (std::string_view name : names) text.append(text.empty() ? "" : ", ").append(name);
+    return text;
+}
+
+const Json &expectObject(const Json &value, const JsonLocation &where) {
+    if (!value.is_object()) where.fail(std::string("expected an object, got ") + value.type_name());
+    return value;
+}
+
+void rejectUnknownKeys(const Json &object, std::span<const std::string_view> known,
+                       const JsonLocation &where) {
+    for (const auto &[key, value] : object.items())
+        if (std::find(known.begin(), known.end(), key) == known.end())
+            where.fail("unknown key '" + key + "' (known: " + joined(known) + ")");
+}
+
+std::string readString(const Json &value, const JsonLocation &where) {
+    if (!value.is_string()) where.fail(std::string("expected a string, got ") + value.type_name());
+    return value.get<std::string>();
+}
+
+bool readBool(const Json &value, const JsonLocation &where) {
+    if (!value.is_boolean()) where.fail(std::string("expected true or false, got ") + value.dump());
+    return value.get<bool>();
+}
+
+float readNumber(const Json &value, const JsonLocation &where) {
+    if (!value.is_number()) where.fail("expected a number, got " + value.dump());
+    const double number = value.get<double>();
+    if (!std::isfinite(float(number))) where.fail("number " + value.dump() + " is out of range");
+    return float(number);
+}
+
+std::string propertyText(const Json &value, const JsonLocation &where) {
+    if (value.is_string()) return value.get<std::string>();
+    if (value.is_number() || value.is_boolean()) return value.dump();
+    if (!value.is_array())
+        where.fail(std::string("expected a string, number, boolean or array, got ") + value.type_name());
+    std::string text;
+    for (std::size_t i = 0; i < value.size(); ++i) {
+        const Json &element = value[i];
+        if (element.is_array() || element.is_object() || element.is_null())
+            where.index(i).fail("expected a string or number, got " + element.dump());
+        text.append(i ? "," : "").append(element.is_string() ? element.get<std::string>() : element.dump());
+    }
+    return text;
+}
+
+double shortestDouble(float value) {
+    char text[32];
+    const auto printed = std::to_chars(text, text + sizeof text, value);
+    double result = value;
+    std::from_chars(text, printed.ptr, result);
+    return result;
+}
+
+std::string unknownPropertyMessage(const std::string &key, const Lens &lens) {
+    std::string known;
+    for (const PropertyDecl &decl : lens.properties()) known.append(known.empty() ? "" : ", ").append(decl.name);
+    return "unknown property '" + key + "' of lens '" + lens.typeName() + "' (known: " + known + ")";
+}
+
+std::string prettyJson(const Json &value) {
+    std::string text;
+    appendPretty(value, 0, text);
+    return text;
+}
+
+Json parseJsonDocument(std::string_view text, const std::string &sourceName) {
+    try {
+        return Json::parse(text);
+    } catch (const Json::exception &e) {
+        // Drop nlohmann's "[json.exception.parse_error.101] " prefix; keep line and column.
+        std::string message = e.what();
+        if (const std::size_t close = message.find("] "); message.starts_with("[json.") && close != std::string::npos)
+            message.erase(0, close + 2);
+        throw Error(sourceName, "invalid JSON: " + message);
+    }
+}
+
+std::string readTextFile(const std::filesystem::path &path, const std::string &what) {
+    const std::string name = path.string();
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw Error(name, "is a folder, not a " + what);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(name, "cannot open the " + what + ": " + std::strerror(errno));
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    return buffer.str();
+}
+
+void writeFileAtomically(const std::filesystem::path &path, std::string_view text) {
+    const std::string name = path.string();
+    if (path.has_parent_path()) {
+        std::error_code ec;
+        std::filesystem::create_directories(path.parent_path(), ec);
+        if (ec) throw Error(name, "cannot create folder: " + ec.message());
+    }
+    std::string temp = name + ".part-XXXXXX";
+    const int fd = ::mkstemp(temp.data());
+    if (fd < 0) throw Error(name, std::string("cannot create a temporary file next to it: ") + std::strerror(errno));
+    const auto failWith = [&](const std::string &what) {
+        const int error = errno;
+        ::unlink(temp.c_str());
+        throw Error(name, what + ": " + std::strerror(error));
+    };
+    ::fchmod(fd, 0644); // mkstemp makes 0600; a session file is an ordinary document
+    if (!writeAll(fd, text) || ::fsync(fd) != 0) {
+        const int error = errno;
+        ::close(fd);
+        errno = error;
+        failWith("write failed");
+    }
+    if (::close(fd) != 0) failWith("write failed");
+    if (::rename(temp.c_str(), name.c_str()) != 0) failWith("cannot replace the file");
+}
+
+} // namespace mvcl::detail
