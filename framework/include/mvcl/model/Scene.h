@@ -28,6 +28,8 @@ namespace mvcl {
 /// What a loader noticed while reading a file; shown by `mvcl-render --info`.
 struct LoadReport {
     std::vector<std::string> warnings;
+    /// What a loader assumed because the file does not say (up axis, unit), one phrase each.
+    std::vector<std::string> assumptions;
     std::size_t degenerateTrianglesDropped = 0;
     std::size_t nonUnitNormalsFixed = 0;
     std::size_t primitivesSkipped = 0; ///< points and lines
