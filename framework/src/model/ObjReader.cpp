@@ -128,13 +128,17 @@ Material materialOf(const tinyobj::material_t &m) {
 }
 
 /// One part per (shape, material) with its own vertex numbering: OBJ indexes positions and
-/// normals separately, a part's vertex is a (position, normal) pair.
+/// normals separately, a part's vertex is a (position, normal) pair. Without normals a part's
+/// vertex is a position, found through one array over the file's positions (which part last
+/// numbered it, and as what) instead of a hash map: a position shared by parts used in turns is
+/// then copied into each, which changes no geometry.
 class PartBuilder {
 public:
     PartBuilder(const ReadInput &input, const tinyobj::attrib_t &attrib, bool hasColors)
-        : m_input(input), m_attrib(attrib), m_hasColors(hasColors) {}
+        : m_input(input), m_attrib(attrib), m_hasColors(hasColors), m_owner(attrib.vertices.size() / 3, kNone),
+          m_number(attrib.vertices.size() / 3, 0) {}
 
-    std::uint32_t vertex(MeshPart &part, std::unordered_map<std::uint64_t, std::uint32_t> &numbers,
+    std::uint32_t vertex(MeshPart &part, std::size_t partId, std::unordered_map<std::uint64_t, std::uint32_t> &numbers,
                          const tinyobj::index_t &corner, bool withNormals) {
         const std::size_t positions = m_attrib.vertices.size() / 3;
         const std::size_t normals = m_attrib.normals.size() / 3;
@@ -146,10 +150,17 @@ public:
         if (normal >= 0 && std::size_t(normal) >= normals)
             fail(m_input, where() + "a face refers to normal " + std::to_string(normal + 1) +
                               ", but the file has " + std::to_string(normals) + " normals");
-        const std::uint64_t key = (std::uint64_t(std::uint32_t(corner.vertex_index)) << 32) | std::uint32_t(normal);
-        const auto [it, inserted] = numbers.try_emplace(key, std::uint32_t(part.positions.size()));
-        if (!inserted) return it->second;
         const std::size_t v = std::size_t(corner.vertex_index);
+        const auto number = std::uint32_t(part.positions.size());
+        if (withNormals) {
+            const std::uint64_t key = (std::uint64_t(std::uint32_t(corner.vertex_index)) << 32) | std::uint32_t(normal);
+            const auto [it, inserted] = numbers.try_emplace(key, number);
+            if (!inserted) return it->second;
+        } else {
+            if (m_owner[v] == partId) return m_number[v];
+            m_owner[v] = partId;
+            m_number[v] = number;
+        }
         const glm::dvec3 p(m_attrib.vertices[3 * v], m_attrib.vertices[3 * v + 1], m_attrib.vertices[3 * v + 2]);
         if (!isFinite(p))
             fail(m_input, "vertex " + std::to_string(v + 1) + " is (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
@@ -164,13 +175,16 @@ public:
             for (int k = 0; k < 3; ++k) c[k] = std::isfinite(c[k]) ? std::clamp(c[k], 0.f, 1.f) : 0.f;
             part.colors.push_back(c);
         }
-        return it->second;
+        return number;
     }
 
 private:
+    static constexpr std::size_t kNone = ~std::size_t(0);
     const ReadInput &m_input;
     const tinyobj::attrib_t &m_attrib;
     bool m_hasColors;
+    std::vector<std::size_t> m_owner;   ///< per file position: the part that numbered it last
+    std::vector<std::uint32_t> m_number; ///< and the number it has there
 };
 
 } // namespace
@@ -233,10 +247,10 @@ MeshFileData readObj(const ReadInput &input) {
             }
             MeshPart &part = data.parts[it->second];
             auto &partNumbers = numbers[it->second - firstPart];
-            const std::uint32_t first = builder.vertex(part, partNumbers, mesh.indices[offset], withNormals);
-            std::uint32_t previous = builder.vertex(part, partNumbers, mesh.indices[offset + 1], withNormals);
+            const std::uint32_t first = builder.vertex(part, it->second, partNumbers, mesh.indices[offset], withNormals);
+            std::uint32_t previous = builder.vertex(part, it->second, partNumbers, mesh.indices[offset + 1], withNormals);
             for (std::size_t k = 2; k < n; ++k) {
-                const std::uint32_t next = builder.vertex(part, partNumbers, mesh.indices[offset + k], withNormals);
+                const std::uint32_t next = builder.vertex(part, it->second, partNumbers, mesh.indices[offset + k], withNormals);
                 checkTriangleCount(input, ++triangles);
                 part.triangles.emplace_back(first, previous, next);
                 previous = next;
