@@ -317,3 +317,11 @@ TEST_F(MeshFiles, ObjMaterialLibrariesOutsideTheFolderAreNotRead) {
         return w.find("only files beside the OBJ file are read") != std::string::npos;
     }));
 }
+
+TEST_F(MeshFiles, PlyElementsWithoutPropertiesHoldNothing) {
+    // A binary element of no properties takes no bytes: 10¹² of them must not be a loop of 10¹².
+    std::string text = ply(cubeMesh(), PlyEncoding::LittleEndian);
+    text.insert(text.find("element face"), "element nothing 1000000000000\n");
+    const Scene scene = loadScene(write("empty-elements.ply", text));
+    EXPECT_EQ(scene.triangleCount(), 12u);
+}

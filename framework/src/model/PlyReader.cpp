@@ -171,10 +171,10 @@ public:
         return 0.0;
     }
 
-    /// Whether `count` more elements of at least `bytesEach` (binary) or one word each (ASCII)
-    /// can still be in the file.
-    bool canHold(std::uint64_t count, std::size_t bytesEach) {
-        if (m_encoding == Encoding::Ascii) return count <= m_text.remaining() / 2; // "0 " per value at least
+    /// Whether `count` more elements of `properties` values and at least `bytesEach` bytes
+    /// (binary) can still be in the file; an ASCII value takes two bytes at least ("0 ").
+    bool canHold(std::uint64_t count, std::size_t properties, std::size_t bytesEach) {
+        if (m_encoding == Encoding::Ascii) return count <= m_text.remaining() / (2 * std::max<std::size_t>(properties, 1));
         return bytesEach == 0 || count <= (m_input.bytes.size() - m_pos) / bytesEach;
     }
     bool atEnd() { return m_encoding == Encoding::Ascii ? !m_text.skipSpace() : m_pos == m_input.bytes.size(); }
@@ -224,9 +224,10 @@ MeshFileData readPly(const ReadInput &input) {
     for (const Element &e : header.elements) {
         const std::string counted =
             std::to_string(e.count) + " " + (e.count == 1 ? e.name : e.name == "vertex" ? "vertices" : e.name + "s");
-        if (!body.canHold(e.count, e.minimumBytes()))
+        if (!body.canHold(e.count, e.properties.size(), e.minimumBytes()))
             fail(input, "the header says " + counted + ", more than the " + std::to_string(body.bytesLeft()) +
                             " bytes after it can hold");
+        if (e.properties.empty()) continue; // holds nothing, however many it counts
         const bool isVertex = e.name == "vertex" && !sawVertices;
         const bool isFace = e.name == "face" && !sawFaces;
         const int x = indexOf(e, {"x"}), y = indexOf(e, {"y"}), z = indexOf(e, {"z"});
