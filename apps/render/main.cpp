@@ -349,7 +349,8 @@ int run(const RenderCommandLine &cl) {
         layerNames += (layerNames.empty() ? "" : ", ") + std::to_string(layer.id) + " " + layer.name;
     std::printf("layers     %s\n", layerNames.c_str());
     printAssumptions(scene);
-    std::printf("load       %.1f ms (reading, checking and layer inference)\n", loadMilliseconds);
+    std::printf("load       %.1f ms: %.1f ms reading and checking, %.1f ms layer inference\n", loadMilliseconds,
+                loadMilliseconds - scene.report.inferenceMilliseconds, scene.report.inferenceMilliseconds);
     // Traversal walks the wide tree; the depth is the binary tree's it was collapsed from (a few
     // primitives give one wide node over a binary tree several levels deep), so both are named.
     std::printf("bvh        %.1f ms build, %zu wide node%s over %zu leaves (binary tree depth %d), %.1f MiB\n",

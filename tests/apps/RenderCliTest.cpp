@@ -105,6 +105,15 @@ TEST(RenderCli, SeveralFilesAreNamedLayersAndAssumptionsArePrinted) {
     EXPECT_EQ(runRender(files + " --info --up 0,0,1").exitCode, 0);
 }
 
+TEST(RenderCli, SummarySaysWhereTheLoadTimeWent) {
+    const fs::path out = outDir() / "load-line.png";
+    const CommandResult r = runRender("builtin:cube-in-cube --size 8x8 --spp 1 -o " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::regex line(R"(load +[0-9.]+ ms: [0-9.]+ ms reading and checking, [0-9.]+ ms layer inference)");
+    EXPECT_TRUE(std::regex_search(r.output, line)) << r.output;
+    EXPECT_NE(r.output.find("layers     0 "), std::string::npos) << r.output;
+}
+
 TEST(RenderCli, InfoPrintsLayersWithoutRendering) {
     const CommandResult r = runRender("builtin:cube-in-cube --info");
     ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -198,7 +199,12 @@ Scene finish(Scene scene, bool isModelFile, const SceneLoadOptions &options) {
     const bool anyUnassigned = std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const TriangleMesh &m) {
         return m.layerSource == LayerSource::Unassigned;
     });
-    if (anyUnassigned) inferLayersByContainment(scene, options.inference);
+    if (anyUnassigned) {
+        const auto start = std::chrono::steady_clock::now();
+        inferLayersByContainment(scene, options.inference);
+        scene.report.inferenceMilliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
     if (options.layerContact.isEnabled()) scene.layerContact = options.layerContact;
     for (const TriangleMesh &m : scene.meshes) scene.layers.ensure(m.layer);
     for (const Sphere &s : scene.spheres) scene.layers.ensure(s.layer);

@@ -35,6 +35,8 @@ struct LoadReport {
     std::size_t primitivesSkipped = 0; ///< points and lines
     std::size_t texturesDecoded = 0;   ///< images decoded into textures
     std::size_t textureBytes = 0;      ///< memory held by decoded images and their mip chains
+    /// Wall time spent inferring layers by containment (0 when nothing was inferred).
+    double inferenceMilliseconds = 0.0;
 };
 
 struct MVCL_EXPORT Scene {
