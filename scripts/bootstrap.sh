@@ -10,7 +10,7 @@ build_type="${MVCL_BUILD_TYPE:-Release}"
 
 packages=(
   g++ cmake ninja-build pkg-config
-  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libtbb-dev
+  libglm-dev libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libtbb-dev
   libcli11-dev libgtest-dev
   libglfw3-dev libimgui-dev libepoxy-dev   # mvcl-viewer
   xvfb xauth libgl1-mesa-dri              # the viewer's end-to-end test: a real window, Mesa llvmpipe

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses of tests/fuzz (clang, ASan+UBSan) in build-fuzz/ (or
-# $MVCL_FUZZ_BUILD_DIR) and runs each for $MVCL_FUZZ_SECONDS (default 120) seconds, seeded with
-# every .gltf/.glb of tests/data/models (external buffers inlined) and tests/data/fuzz-regressions.
+# $MVCL_FUZZ_BUILD_DIR) and runs each for $MVCL_FUZZ_SECONDS (default 120) seconds: the glTF
+# loader seeded with every .gltf/.glb of tests/data/models (external buffers inlined) and
+# tests/data/fuzz-regressions, the OBJ, STL and PLY readers with the files of tests/data/meshes
+# that have their extension.
 # The corpus grows in the build directory and is reused by the next run.
 # A crash fails the script; the input is left in <build>/artifacts/: fix the bug, then copy the
 # input into tests/data/fuzz-regressions/, where GltfFuzzRegressions loads it in every test run.
@@ -19,7 +21,7 @@ ci_reset_if_compiler_differs "$build_dir" "$compiler"
 cmake -S "$repo" -B "$build_dir" -G Ninja -DCMAKE_CXX_COMPILER="$compiler" \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
   -DMVCL_BUILD_FUZZERS=ON -DMVCL_BUILD_TESTS=OFF -DMVCL_BUILD_BENCH=OFF >/dev/null
-cmake --build "$build_dir" --target mvcl-fuzz-gltf mvcl-fuzz-glb -- -j"$jobs"
+cmake --build "$build_dir" --target mvcl-fuzz-gltf mvcl-fuzz-glb mvcl-fuzz-obj mvcl-fuzz-stl mvcl-fuzz-ply -- -j"$jobs"
 
 # Seeds: .glb as they are; .gltf with their external buffers inlined as data URIs, because the
 # harness gives no asset folder (it never reads the disk). Images are dropped: they are not decoded.
@@ -27,7 +29,10 @@ cmake --build "$build_dir" --target mvcl-fuzz-gltf mvcl-fuzz-glb -- -j"$jobs"
 max_len=131072
 seeds="$build_dir/fuzz-seeds"
 rm -rf "$seeds"
-mkdir -p "$seeds/gltf" "$seeds/glb"
+mkdir -p "$seeds/gltf" "$seeds/glb" "$seeds/obj" "$seeds/stl" "$seeds/ply"
+for format in obj stl ply; do
+  find "$repo/tests/data/meshes" -type f -iname "*.$format" -size -128k -exec cp {} "$seeds/$format/" \;
+done
 python3 - "$repo" "$seeds" "$max_len" <<'PY'
 import base64, hashlib, json, os, pathlib, sys
 repo, seeds, max_len = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2]), int(sys.argv[3])
@@ -51,13 +56,15 @@ for path in (p for p in sources if p.name != "README.md"):
 PY
 
 total=0
-for entry in gltf glb; do
+for entry in gltf glb obj stl ply; do
+  dict=()
+  case "$entry" in gltf | glb) dict=(-dict="$repo/tests/fuzz/gltf.dict") ;; esac
   corpus="$build_dir/fuzz-corpus/$entry"
   artifacts="$build_dir/artifacts/$entry"
   mkdir -p "$corpus" "$artifacts"
   log="$build_dir/fuzz-$entry.log"
   echo "ci-fuzz: mvcl-fuzz-$entry for ${seconds}s ($(ls "$seeds/$entry" | wc -l) seeds, $(ls "$corpus" | wc -l) corpus inputs)"
-  if ! "$build_dir/bin/mvcl-fuzz-$entry" "$corpus" "$seeds/$entry" -dict="$repo/tests/fuzz/gltf.dict" \
+  if ! "$build_dir/bin/mvcl-fuzz-$entry" "$corpus" "$seeds/$entry" "${dict[@]}" \
       -max_total_time="$seconds" -max_len="$max_len" -timeout=10 -rss_limit_mb=2048 \
       -artifact_prefix="$artifacts/" -print_final_stats=1 >"$log" 2>&1; then
     tail -60 "$log"

@@ -196,7 +196,8 @@ std::string fileHash(const std::filesystem::path &path) {
 /// matters costs one re-render, a stale reference would cost a wrong curve).
 std::string rendererHash() {
     Dl_info info{};
-    if (dladdr(reinterpret_cast<void *>(&mvcl::loadScene), &info) == 0 || !info.dli_fname) return "unknown";
+    using LoadOne = mvcl::Scene (*)(std::string_view, const mvcl::SceneLoadOptions &);
+    if (dladdr(reinterpret_cast<void *>(static_cast<LoadOne>(&mvcl::loadScene)), &info) == 0 || !info.dli_fname) return "unknown";
     return fileHash(info.dli_fname);
 }
 

@@ -20,6 +20,7 @@
 #include "CastBench.h"
 #include "ConvergenceBench.h"
 #include "FrameBench.h"
+#include "LoadBench.h"
 #include "PovBench.h"
 
 #include <mvcl/core/WorkerPool.h>
@@ -170,6 +171,7 @@ int main(int argc, char **argv) {
     if (argc > 1 && std::string(argv[1]) == "cast") return mvcl::bench::runCastBench(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "frame") return mvcl::bench::runFrameBench(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "pov") return mvcl::bench::runPovExport(argc - 1, argv + 1);
+    if (argc > 1 && std::string(argv[1]) == "load") return mvcl::bench::runLoadBench(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "image-diff") return mvcl::bench::runImageDiff(argc - 1, argv + 1);
     std::optional<Options> options;
     try {

@@ -16,7 +16,8 @@ namespace {
     throw Error("command line", problem + " (see mvcl-render --help)");
 }
 
-constexpr const char *kUsage = R"(usage: mvcl-render [options] <model.gltf | model.glb | builtin:NAME>
+constexpr const char *kUsage = R"(usage: mvcl-render [options] <model.gltf | .glb | .obj | .stl | .ply | builtin:NAME>
+       mvcl-render [options] <outer model> <inner model>...   (several files as layers, first = outermost)
        mvcl-render [options] --lenses FILE      (the file names the scene)
        mvcl-render --list-lenses
 
@@ -41,7 +42,10 @@ std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::stri
     app->formatter(std::make_shared<UsageFormatter>(kUsage));
     app->footer(kExitCodes);
     app->set_help_flag("-h,--help", "this text");
-    app->add_option("scene", scenes, "model file or builtin:NAME (or none with --lenses)")->option_text(" ");
+    app->add_option("scene", scenes,
+                    "model file or builtin:NAME (or none with --lenses); several model files\n"
+                    "are the layers of one scene, the first the outermost")
+        ->option_text(" ");
 
     app->add_option("-o,--output", cl.output, "image to write (.png/.jpg/.tif sRGB, .exr linear); default out/<scene>.png")
         ->type_name("FILE");
@@ -75,9 +79,25 @@ std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::stri
     app->add_option_function<std::string>("--target", [&](const std::string &text) { cl.target = parseVector3(text); },
                                           "point looked at")
         ->type_name("X,Y,Z")->check(vector3());
-    app->add_option_function<std::string>("--up", [&](const std::string &text) { cl.up = parseVector3(text); },
-                                          "up direction (default 0,1,0)")
-        ->type_name("X,Y,Z")->check(vector3());
+    // One option, two meanings told apart by their form: an axis name is the files' up axis,
+    // three numbers the camera's up direction.
+    app->add_option_function<std::string>(
+           "--up",
+           [&](const std::string &text) {
+               if (text == "y" || text == "z") cl.modelUp = text;
+               else cl.up = parseVector3(text);
+           },
+           "y or z: the up axis of OBJ, STL and PLY files, which do not say (default y);\n"
+           "X,Y,Z: the camera's up direction (default 0,1,0)")
+        ->type_name("y|z|X,Y,Z")
+        ->check(validatorFrom(
+            [](const std::string &text) {
+                if (text != "y" && text != "z") parseVector3(text);
+            },
+            ""));
+    app->add_option("--unit", cl.unit, "length unit of OBJ, STL and PLY files, which do not say (default m)")
+        ->type_name("mm|cm|m|in")
+        ->check(CLI::IsMember({"mm", "cm", "m", "in"}));
     app->add_option_function<std::string>("--fov", [&](const std::string &text) { cl.fov = float(parseFiniteNumber(text)); },
                                           "vertical field of view in degrees (default 40)")
         ->type_name("DEG")->check(numberBetween(0.0, 180.0, "in (0, 180) degrees"));
@@ -166,8 +186,12 @@ RenderCommandLine parseRenderCommandLine(const std::vector<std::string> &args) {
     const std::unique_ptr<CLI::App> app = renderApp(cl, scenes);
     cl.help = parseCommandLine(*app, args);
     if (cl.help) return cl;
-    if (scenes.size() > 1) usageError("more than one scene given ('" + scenes[0] + "' and '" + scenes[1] + "')");
+    if (scenes.size() > 1)
+        for (const std::string &scene : scenes)
+            if (scene.starts_with("builtin:"))
+                usageError("'" + scene + "' cannot be combined with other scenes (several model files are layers)");
     if (!scenes.empty()) cl.source = scenes.front();
+    if (scenes.size() > 1) cl.moreSources.assign(scenes.begin() + 1, scenes.end());
     if (!cl.version && !cl.listLenses && cl.source.empty() && cl.lensFile.empty()) usageError("no scene given");
     if (cl.maxSamplesPerPixel && *cl.maxSamplesPerPixel < cl.samplesPerPixel)
         usageError("--max-spp " + std::to_string(*cl.maxSamplesPerPixel) + " is below --spp " +

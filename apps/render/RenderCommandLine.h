@@ -23,6 +23,7 @@ enum ExitCode : int {
 
 struct RenderCommandLine {
     std::string source;              ///< model path or builtin:<name>
+    std::vector<std::string> moreSources; ///< further model files, layered inside `source` in order
     std::string output;              ///< image path; empty = out/<scene>.png
     int width = 800;
     int height = 600;
@@ -35,7 +36,9 @@ struct RenderCommandLine {
     unsigned seed = 0;
     std::optional<glm::vec3> eye;    ///< world space
     std::optional<glm::vec3> target; ///< world space
-    std::optional<glm::vec3> up;
+    std::optional<glm::vec3> up;     ///< camera up (--up X,Y,Z)
+    std::string modelUp;             ///< --up y|z: the up axis of files that do not say; empty = y, assumed
+    std::string unit;                ///< --unit mm|cm|m|in for files that do not say; empty = m, assumed
     std::optional<float> fov;        ///< vertical, degrees
     std::string camera;              ///< glTF camera index or name; empty = default view
     std::string layerRulesFile;

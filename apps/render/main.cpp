@@ -20,6 +20,7 @@
 #include <mvcl/view/RenderSession.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -45,8 +46,17 @@ const char *layerSourceName(LayerSource s) {
     case LayerSource::Extras: return "extras.layer";
     case LayerSource::Rule: return "rule";
     case LayerSource::Inferred: return "inferred";
+    case LayerSource::File: return "file";
     }
     return "?";
+}
+
+/// What the loader assumed for files that do not say, and the options that change it.
+void printAssumptions(const Scene &scene) {
+    if (scene.report.assumptions.empty()) return;
+    std::string text;
+    for (const std::string &a : scene.report.assumptions) text += (text.empty() ? "" : ", ") + a;
+    std::printf("assumed    %s (the file does not say; --up y|z, --unit mm|cm|m|in)\n", text.c_str());
 }
 
 void printInfo(const Scene &scene) {
@@ -82,6 +92,7 @@ void printInfo(const Scene &scene) {
     if (scene.report.nonUnitNormalsFixed)
         std::printf("fixed      %zu non-unit normals\n", scene.report.nonUnitNormalsFixed);
     for (const std::string &w : scene.report.warnings) std::printf("warning    %s\n", w.c_str());
+    printAssumptions(scene);
 }
 
 /// 31420 → "31,420".
@@ -153,6 +164,7 @@ void printLensTypes(const LensRegistry &registry) {
 ViewRequest viewRequest(const RenderCommandLine &cl) {
     ViewRequest request;
     request.source = cl.source;
+    request.moreSources = cl.moreSources;
     request.sessionFile = cl.lensFile;
     request.lensSpecs = cl.lensSpecs;
     request.sceneCamera = cl.camera;
@@ -172,6 +184,8 @@ ViewRequest viewRequest(const RenderCommandLine &cl) {
         const LayerRules fileRules = LayerRules::fromJsonFile(cl.layerRulesFile);
         for (const LayerRule &rule : fileRules.rules()) request.loadOptions.layerRules.add(rule);
     }
+    if (!cl.modelUp.empty()) request.loadOptions.upAxis = upAxisFromName(cl.modelUp);
+    if (!cl.unit.empty()) request.loadOptions.unit = lengthUnitFromName(cl.unit);
     request.loadOptions.defaultLights = cl.defaultLights ? DefaultLights::WhenTheFileHasNone : DefaultLights::Never;
     if (!cl.layerContact.empty()) {
         try {
@@ -282,7 +296,10 @@ int run(const RenderCommandLine &cl) {
     const std::optional<Animation> animation =
         isAnimation(cl) ? std::optional<Animation>(commandLineAnimation(cl, lenses)) : std::nullopt;
 
-    const Scene scene = loadScene(setup.source, setup.loadOptions);
+    const auto loadStart = std::chrono::steady_clock::now();
+    const Scene scene = loadScene(setup.sources(), setup.loadOptions);
+    const double loadMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count();
     if (cl.info) {
         printInfo(scene);
         printLayerContacts(scene);
@@ -345,6 +362,13 @@ int run(const RenderCommandLine &cl) {
     std::printf("geometry   %zu triangles in %zu meshes, %zu spheres, %zu planes, %d layers, %zu lights\n",
                 build.triangles, scene.meshes.size(), scene.spheres.size(), scene.planes.size(),
                 scene.layers.count(), scene.lights.size());
+    std::string layerNames;
+    for (const Layer &layer : scene.layers.layers())
+        layerNames += (layerNames.empty() ? "" : ", ") + std::to_string(layer.id) + " " + layer.name;
+    std::printf("layers     %s\n", layerNames.c_str());
+    printAssumptions(scene);
+    std::printf("load       %.1f ms: %.1f ms reading and checking, %.1f ms layer inference\n", loadMilliseconds,
+                loadMilliseconds - scene.report.inferenceMilliseconds, scene.report.inferenceMilliseconds);
     // Traversal walks the wide tree; the depth is the binary tree's it was collapsed from (a few
     // primitives give one wide node over a binary tree several levels deep), so both are named.
     std::printf("bvh        %.1f ms build, %zu wide node%s over %zu leaves (binary tree depth %d), %.1f MiB\n",

@@ -2,11 +2,14 @@
 
 #include <mvcl/core/Error.h>
 #include <mvcl/model/LayerRules.h>
+#include <mvcl/model/MeshFileLoader.h>
 
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <map>
+#include <string>
+#include <vector>
 
 namespace mvcl::viewer {
 
@@ -14,12 +17,19 @@ int parseViewerOptions(int argc, char **argv, ViewerOptions &options) {
     CLI::App app{"mvcl-viewer: open a layered model, stack and drag lenses over it, look inside in real time.\n"
                  "Press F1 in the window for every mouse and key binding.",
                  "mvcl-viewer"};
-    std::string size, layerRule;
+    std::string size, layerRule, up, unit;
+    std::vector<std::string> scenes;
     std::filesystem::path script;
-    app.add_option("scene", options.request.source, "model.gltf | model.glb | builtin:NAME (default: the session's scene)");
+    app.add_option("scene", scenes,
+                   "model file (.gltf .glb .obj .stl .ply) or builtin:NAME (default: the session's scene);\n"
+                   "several model files are the layers of one scene, the first the outermost");
     app.add_option("--lenses,--session", options.request.sessionFile, "session (lens-stack) file to open");
     app.add_option("--lens", options.request.lensSpecs, "one more lens on top: TYPE:key=value,... (repeatable)");
     app.add_option("--layer-rule", layerRule, "inline layer rules \"glob=layer;...\" (win over the session's)");
+    app.add_option("--up", up, "up axis of OBJ, STL and PLY files, which do not say (default y)")
+        ->check(CLI::IsMember({"y", "z"}));
+    app.add_option("--unit", unit, "length unit of OBJ, STL and PLY files (default m)")
+        ->check(CLI::IsMember({"mm", "cm", "m", "in"}));
     app.add_option("--size", size, "window size WxH in screen units (default 1600x900)");
     app.add_option("--threads", options.threads, "render threads, 0 = all cores")->check(CLI::Range(0, 1024));
     const std::map<std::string, SamplingMode> modes = {
@@ -47,6 +57,12 @@ int parseViewerOptions(int argc, char **argv, ViewerOptions &options) {
             options.height = h;
         }
         if (!layerRule.empty()) options.request.loadOptions.layerRules = LayerRules::fromString(layerRule);
+        if (!scenes.empty()) {
+            options.request.source = scenes.front();
+            options.request.moreSources.assign(scenes.begin() + 1, scenes.end());
+        }
+        if (!up.empty()) options.request.loadOptions.upAxis = upAxisFromName(up);
+        if (!unit.empty()) options.request.loadOptions.unit = lengthUnitFromName(unit);
     } catch (const CLI::CallForHelp &) {
         std::fputs(app.help().c_str(), stdout);
         return 0;

@@ -5,6 +5,7 @@
 #include "PropertyEditor.h"
 #include "Viewer.h"
 
+#include <mvcl/io/SceneLoader.h>
 #include <mvcl/lens/LensStack.h>
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/Tracer.h>
@@ -52,7 +53,7 @@ void Viewer::drawPanels() {
     ImGui::SetNextWindowPos(ImVec2(m_viewScreenSize.x, 0.f), ImGuiCond_Always);
     ImGui::SetNextWindowSize(ImVec2(m_panelWidth, m_viewScreenSize.y), ImGuiCond_Always);
     ImGui::Begin("mvcl", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-    ImGui::TextDisabled("%s  (F1: help)", m_controller->sceneSource().c_str());
+    ImGui::TextDisabled("%s  (F1: help)", describeSources(m_controller->sceneSources()).c_str());
     if (ImGui::CollapsingHeader("Lenses", ImGuiTreeNodeFlags_DefaultOpen)) drawLensStackPanel();
     if (ImGui::CollapsingHeader("Selected lens", ImGuiTreeNodeFlags_DefaultOpen)) drawLensPanel();
     if (ImGui::CollapsingHeader("Layers", ImGuiTreeNodeFlags_DefaultOpen)) drawLayersPanel();

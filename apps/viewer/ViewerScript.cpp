@@ -24,7 +24,7 @@ const std::map<std::string, Arity> &commandTable() {
         {"key", {1, 4}},           {"add-lens", {3, 3}},        {"select", {1, 1}},
         {"set-property", {3, 3}},  {"set-layer", {2, 2}},       {"wait-converged", {0, 0}},
         {"wait-frames", {1, 1}},   {"screenshot", {1, 1}},      {"window-screenshot", {1, 1}},
-        {"save-session", {1, 1}},  {"load-session", {1, 1}},    {"open", {1, 1}},
+        {"save-session", {1, 1}},  {"load-session", {1, 1}},    {"open", {1, 32}},
         {"expect-lenses", {1, 1}}, {"bench-begin", {1, 1}},     {"bench-end", {0, 0}},
         {"add-keyframe", {2, 2}},  {"play", {1, 1}},            {"record", {2, 2}},
         {"stop-recording", {0, 0}}, {"quit", {0, 1}},

@@ -141,7 +141,7 @@ bool Viewer::runCommand(const ScriptCommand &c) {
         m_imageCurrent = false;
     } else if (name == "open") {
         stopHistogramWorker();
-        m_controller->openScene(c.word(0));
+        m_controller->openScenes(c.args); // several models: the layers of one scene
         m_imageCurrent = false;
     } else if (name == "expect-lenses") {
         if (m_controller->lensCount() != c.integer(0))

@@ -71,7 +71,8 @@ TEST(RenderCli, HelpListsTheOptionsOfTheReadmeTable) {
 
 TEST(RenderCli, BadArgumentsExitTwoWithOneLineError) {
     for (const char *args : {"", "--bogus builtin:onion", "builtin:onion --spp 0", "builtin:onion --size 10",
-                             "builtin:onion --eye 1,2", "builtin:onion --fov 200", "a.glb b.glb",
+                             "builtin:onion --eye 1,2", "builtin:onion --fov 200", "builtin:onion a.glb",
+                             "builtin:onion --up x", "builtin:onion --unit ft",
                              "builtin:onion --threads", "builtin:onion --adaptive --target-error -1",
                              "builtin:onion --target-error x", "builtin:onion --time-limit 0",
                              "builtin:onion --max-spp 0", "builtin:onion --spp 8 --max-spp 4",
@@ -89,6 +90,31 @@ TEST(RenderCli, MissingOrUnknownSceneExitsOneNamingIt) {
         EXPECT_EQ(r.exitCode, 1) << r.output;
         EXPECT_NE(r.output.find(src.substr(src.find_last_of("/:") + 1)), std::string::npos) << r.output;
     }
+}
+
+TEST(RenderCli, SeveralFilesAreNamedLayersAndAssumptionsArePrinted) {
+    const fs::path kidney = fs::path(MVCL_TEST_DATA_DIR) / "meshes/kidney";
+    const std::string files = (kidney / "kidney-capsule.stl").string() + " " + (kidney / "renal-pyramids.ply").string();
+    const CommandResult r = runRender(files + " --info");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("layer 0    kidney-capsule"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("layer 1    renal-pyramids"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("assumed    y up, unit m"), std::string::npos) << r.output;
+    const CommandResult told = runRender(files + " --info --up y --unit m --layer-rule 'renal*=1:pyramids'");
+    ASSERT_EQ(told.exitCode, 0) << told.output;
+    EXPECT_EQ(told.output.find("assumed"), std::string::npos) << told.output;
+    EXPECT_NE(told.output.find("layer 1    pyramids"), std::string::npos) << told.output;
+    // --up with three numbers is still the camera's up direction.
+    EXPECT_EQ(runRender(files + " --info --up 0,0,1").exitCode, 0);
+}
+
+TEST(RenderCli, SummarySaysWhereTheLoadTimeWent) {
+    const fs::path out = outDir() / "load-line.png";
+    const CommandResult r = runRender("builtin:cube-in-cube --size 8x8 --spp 1 -o " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::regex line(R"(load +[0-9.]+ ms: [0-9.]+ ms reading and checking, [0-9.]+ ms layer inference)");
+    EXPECT_TRUE(std::regex_search(r.output, line)) << r.output;
+    EXPECT_NE(r.output.find("layers     0 "), std::string::npos) << r.output;
 }
 
 TEST(RenderCli, InfoPrintsLayersWithoutRendering) {

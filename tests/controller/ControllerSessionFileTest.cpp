@@ -182,6 +182,27 @@ TEST_F(ControllerSessionFileTest, DroppedFilesOpenSessionsAndModelsAndReportBrok
     EXPECT_FALSE(controller->canUndo());
 }
 
+TEST_F(ControllerSessionFileTest, SeveralDroppedModelsAreLayersAndTheSessionKeepsTheList) {
+    const fs::path kidney = fs::path(MVCL_TEST_DATA_DIR) / "meshes" / "kidney";
+    const std::vector<std::string> files = {(kidney / "kidney-capsule.stl").string(),
+                                            (kidney / "renal-pyramids.ply").string()};
+    auto controller = makeController();
+    EXPECT_TRUE(controller->handle(InputEvent::fileDrop({10.f, 10.f}, files)));
+    EXPECT_EQ(controller->sceneSources(), files);
+    ASSERT_EQ(controller->scene().layers.count(), 2);
+    EXPECT_EQ(controller->scene().layers.find(1)->name, "renal-pyramids");
+
+    const fs::path session = scratchFolder() / "two-files.json";
+    controller->saveSession(session);
+    EXPECT_NE(readText(session).find("\"scene\": ["), std::string::npos) << readText(session);
+    auto reopened = makeController();
+    reopened->loadSession(session);
+    ASSERT_EQ(reopened->sceneSources().size(), 2u);
+    EXPECT_TRUE(fs::equivalent(reopened->sceneSources()[1], files[1]));
+    EXPECT_EQ(reopened->scene().layers.find(0)->name, "kidney-capsule");
+    EXPECT_EQ(reopened->scene().triangleCount(), controller->scene().triangleCount());
+}
+
 TEST_F(ControllerSessionFileTest, WithoutAnErrorCallbackHandleThrows) {
     auto controller = makeController();
     EXPECT_THROW(controller->handle(InputEvent::fileDrop({0.f, 0.f}, {"/nonexistent/model.glb"})), Error);

@@ -9,7 +9,8 @@
 #include <mvcl/core/Error.h>
 #include <mvcl/model/GltfLoader.h>
 
-#include <cmath>
+#include "SceneInvariants.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -19,22 +20,6 @@ namespace {
 
 bool isGlb(const std::uint8_t *data, std::size_t size) { return size >= 4 && std::memcmp(data, "glTF", 4) == 0; }
 
-bool finite(const glm::vec3 &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-/// What GltfLoader.h promises about a loaded scene; the tracer indexes without further checks.
-void checkSceneInvariants(const mvcl::Scene &scene) {
-    if (scene.materials.empty()) __builtin_trap();
-    for (const mvcl::TriangleMesh &mesh : scene.meshes) {
-        if (mesh.material >= scene.materials.size()) __builtin_trap();
-        if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) __builtin_trap();
-        for (const glm::vec3 &p : mesh.positions)
-            if (!finite(p)) __builtin_trap();
-        for (const glm::uvec3 &t : mesh.indices)
-            for (int k = 0; k < 3; ++k)
-                if (t[k] >= mesh.positions.size()) __builtin_trap();
-    }
-}
-
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size) {
@@ -42,7 +27,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
     mvcl::GltfLoadOptions options;
     options.maxFileBytes = 1u << 20; // keep single inputs cheap; libFuzzer's -max_len is smaller anyway
     try {
-        checkSceneInvariants(mvcl::loadGltfFromMemory({data, size}, MVCL_FUZZ_GLB ? "fuzz.glb" : "fuzz.gltf", "",
+        mvcl::fuzz::checkSceneInvariants(mvcl::loadGltfFromMemory({data, size}, MVCL_FUZZ_GLB ? "fuzz.glb" : "fuzz.gltf", "",
                                                       options));
     } catch (const mvcl::Error &) {
         // A clean rejection: the expected outcome for almost every input.

@@ -14,7 +14,7 @@ namespace {
 
 bool sameRules(const LayerRules &a, const LayerRules &b) {
     return std::ranges::equal(a.rules(), b.rules(), [](const LayerRule &x, const LayerRule &y) {
-        return x.pattern == y.pattern && x.layer == y.layer;
+        return x.pattern == y.pattern && x.layer == y.layer && x.name == y.name;
     });
 }
 
@@ -24,6 +24,10 @@ bool sameSource(const std::string &a, const std::string &b) {
     if (a.starts_with("builtin:") || b.starts_with("builtin:")) return false;
     std::error_code ec;
     return std::filesystem::equivalent(a, b, ec);
+}
+
+bool sameSources(const std::vector<std::string> &a, const std::vector<std::string> &b) {
+    return std::ranges::equal(a, b, sameSource);
 }
 
 } // namespace
@@ -137,7 +141,7 @@ Controller::Controller(const LensRegistry &registry, const ViewRequest &request,
     d->settings = settings;
     d->viewSize = {std::max(settings.width, 1), std::max(settings.height, 1)};
     ViewSetup setup = ViewSetup::prepare(request, registry);
-    auto scene = std::make_unique<Scene>(loadScene(setup.source, setup.loadOptions));
+    auto scene = std::make_unique<Scene>(loadScene(setup.sources(), setup.loadOptions));
     auto tracer = std::make_unique<Tracer>(*scene);
     d->camera = setup.camera(*scene, request, float(d->viewSize.x) / float(d->viewSize.y));
     d->visibleLayers = setup.session.visibleLayers;
@@ -158,16 +162,24 @@ const Scene &Controller::scene() const { return *d->scene; }
 const Tracer &Controller::tracer() const { return *d->tracer; }
 RenderSession &Controller::renderSession() { return *d->session; }
 const std::string &Controller::sceneSource() const { return d->setup.source; }
+std::vector<std::string> Controller::sceneSources() const { return d->setup.sources(); }
 const SceneLoadOptions &Controller::sceneLoadOptions() const { return d->setup.loadOptions; }
 
 void Controller::openScene(const std::string &source, const SceneLoadOptions &options) {
+    openScenes({source}, options);
+}
+
+void Controller::openScenes(const std::vector<std::string> &sources, const SceneLoadOptions &options) {
+    if (sources.empty()) return;
     if (d->drag.kind != DragKind::None) d->cancelDrag();
     ViewSetup setup;
-    setup.source = source;
+    setup.source = sources.front();
+    setup.moreSources.assign(sources.begin() + 1, sources.end());
     setup.loadOptions = options;
     ViewRequest request;
-    request.source = source;
-    auto scene = std::make_unique<Scene>(loadScene(source, options));
+    request.source = setup.source;
+    request.moreSources = setup.moreSources;
+    auto scene = std::make_unique<Scene>(loadScene(sources, options));
     auto tracer = std::make_unique<Tracer>(*scene);
     const Camera camera = setup.camera(*scene, request, coordinates().aspect());
     // Nothing below throws: the new scene is complete.
@@ -200,14 +212,14 @@ void Controller::loadSession(const std::filesystem::path &file) {
     request.loadOptions.layerRules = {};
     request.loadOptions.layerContact = {}; // the file's contact tolerance, like its rules
     ViewSetup setup = ViewSetup::prepare(request, d->registry);
-    const bool sameScene = sameSource(setup.source, d->setup.source) &&
+    const bool sameScene = sameSources(setup.sources(), d->setup.sources()) &&
                            sameRules(setup.loadOptions.layerRules, d->setup.loadOptions.layerRules) &&
                            setup.loadOptions.layerContact == d->setup.loadOptions.layerContact;
     std::unique_ptr<Scene> scene;
     std::unique_ptr<Tracer> tracer;
     if (!sameScene) {
         try {
-            scene = std::make_unique<Scene>(loadScene(setup.source, setup.loadOptions));
+            scene = std::make_unique<Scene>(loadScene(setup.sources(), setup.loadOptions));
         } catch (const Error &e) { // the scene's own error, said to be the session file's scene
             throw Error(file.string(), "scene: " + std::string(e.what()));
         }

@@ -199,7 +199,7 @@ bool Controller::Private::fileDrop(const InputEvent &event) {
     if (event.paths.empty()) return false;
     const auto session = std::ranges::find_if(event.paths, isSessionFile);
     if (session != event.paths.end()) q.loadSession(*session);
-    else q.openScene(event.paths.front());
+    else q.openScenes(event.paths);
     return true;
 }
 

@@ -18,6 +18,12 @@ const CameraDesc *findSceneCamera(const Scene &scene, const std::string &name) {
 
 } // namespace
 
+std::vector<std::string> ViewSetup::sources() const {
+    std::vector<std::string> all{source};
+    all.insert(all.end(), moreSources.begin(), moreSources.end());
+    return all;
+}
+
 ViewSetup ViewSetup::prepare(const ViewRequest &request, const LensRegistry &registry) {
     ViewSetup setup;
     if (!request.sessionFile.empty()) setup.session = readLensStackFile(request.sessionFile, registry);
@@ -29,6 +35,7 @@ ViewSetup ViewSetup::prepare(const ViewRequest &request, const LensRegistry &reg
         }
     }
     setup.source = request.source.empty() ? setup.session.scene : request.source;
+    setup.moreSources = request.source.empty() ? setup.session.moreScenes : request.moreSources;
     if (setup.source.empty())
         throw Error(request.origin, request.sessionFile.empty()
                                         ? std::string("no scene given")
@@ -73,6 +80,7 @@ LensStackDescription ViewSetup::describe(const Scene &scene, const Camera &camer
                                          uint32_t visibleLayers) const {
     LensStackDescription description;
     description.scene = source;
+    description.moreScenes = moreSources;
     description.camera = ViewCoordinates({1, 1}, scene).worldFromCamera(camera);
     description.layerRules = loadOptions.layerRules;
     description.visibleLayers = visibleLayers;

@@ -164,7 +164,20 @@ LensStackDescription readDescription(const Json &document, const LensRegistry &r
     }
 
     LensStackDescription description;
-    if (document.contains("scene")) description.scene = readString(document["scene"], where.key("scene"));
+    if (document.contains("scene")) {
+        const Json &scene = document["scene"];
+        const JsonLocation sceneWhere = where.key("scene");
+        if (scene.is_array()) { // several files as layers, the first outermost
+            if (scene.empty()) sceneWhere.fail("expected a model path or a non-empty array of them");
+            for (std::size_t i = 0; i < scene.size(); ++i) {
+                std::string file = readString(scene[i], sceneWhere.index(i));
+                if (i == 0) description.scene = std::move(file);
+                else description.moreScenes.push_back(std::move(file));
+            }
+        } else {
+            description.scene = readString(scene, sceneWhere);
+        }
+    }
     if (document.contains("camera")) description.camera = readCamera(document["camera"], where.key("camera"));
     if (document.contains("layerRules")) {
         const JsonLocation rulesWhere = where.key("layerRules");
@@ -247,7 +260,13 @@ Json lensJson(const Lens &lens) {
 Json descriptionJson(const LensStackDescription &description) {
     Json json;
     json["version"] = kFileVersion;
-    if (!description.scene.empty()) json["scene"] = description.scene;
+    if (!description.moreScenes.empty()) {
+        Json scenes = Json::array({description.scene});
+        for (const std::string &s : description.moreScenes) scenes.push_back(s);
+        json["scene"] = std::move(scenes);
+    } else if (!description.scene.empty()) {
+        json["scene"] = description.scene;
+    }
     if (const auto &camera = description.camera) {
         if (!camera->sceneCamera.empty()) {
             json["camera"] = {{"name", camera->sceneCamera}};
@@ -261,7 +280,8 @@ Json descriptionJson(const LensStackDescription &description) {
     if (!description.layerRules.isEmpty()) {
         Json rules = Json::array();
         for (const LayerRule &rule : description.layerRules.rules())
-            rules.push_back({{"match", rule.pattern}, {"layer", rule.layer}});
+            rules.push_back(rule.name.empty() ? Json{{"match", rule.pattern}, {"layer", rule.layer}}
+                                              : Json{{"match", rule.pattern}, {"layer", rule.layer}, {"name", rule.name}});
         json["layerRules"] = std::move(rules);
     }
     if (description.visibleLayers != kAllLayers) json["visibleLayers"] = layerSetToString(description.visibleLayers);
@@ -327,12 +347,12 @@ bool isSceneFile(const std::string &scene) { return !scene.empty() && !scene.sta
 
 bool operator==(const LensStackDescription &a, const LensStackDescription &b) {
     const auto sameRule = [](const LayerRule &x, const LayerRule &y) {
-        return x.pattern == y.pattern && x.layer == y.layer;
+        return x.pattern == y.pattern && x.layer == y.layer && x.name == y.name;
     };
     const auto sameLens = [](const std::shared_ptr<Lens> &x, const std::shared_ptr<Lens> &y) {
         return sameCommittedLens(*x, *y);
     };
-    return a.scene == b.scene && a.camera == b.camera && a.visibleLayers == b.visibleLayers &&
+    return a.scene == b.scene && a.moreScenes == b.moreScenes && a.camera == b.camera && a.visibleLayers == b.visibleLayers &&
            a.layerContact == b.layerContact &&
            std::ranges::equal(a.layerRules.rules(), b.layerRules.rules(), sameRule) &&
            std::ranges::equal(a.lenses.lenses(), b.lenses.lenses(), sameLens);
@@ -346,8 +366,12 @@ LensStackDescription parseLensStackJson(std::string_view text, const std::string
 LensStackDescription readLensStackFile(const std::filesystem::path &path, const LensRegistry &registry) {
     LensStackDescription description =
         parseLensStackJson(readTextFile(path, "lens-stack file"), path.string(), registry);
-    if (isSceneFile(description.scene) && std::filesystem::path(description.scene).is_relative())
-        description.scene = (path.parent_path() / description.scene).lexically_normal().string();
+    const auto resolve = [&path](std::string &scene) {
+        if (isSceneFile(scene) && std::filesystem::path(scene).is_relative())
+            scene = (path.parent_path() / scene).lexically_normal().string();
+    };
+    resolve(description.scene);
+    for (std::string &s : description.moreScenes) resolve(s);
     return description;
 }
 
@@ -361,10 +385,12 @@ std::string lensStackJson(const LensStackDescription &description) {
 
 void writeLensStackFile(const std::filesystem::path &path, const LensStackDescription &description) {
     LensStackDescription relocated = description; // shares the lenses
-    if (isSceneFile(description.scene)) {
-        const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
-        relocated.scene = std::filesystem::absolute(description.scene).lexically_proximate(folder).string();
-    }
+    const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
+    const auto relocate = [&folder](std::string &scene) {
+        if (isSceneFile(scene)) scene = std::filesystem::absolute(scene).lexically_proximate(folder).string();
+    };
+    relocate(relocated.scene);
+    for (std::string &s : relocated.moreScenes) relocate(s);
     std::string text;
     try {
         text = lensStackJson(relocated);

@@ -52,6 +52,11 @@ std::optional<int> LayerRules::match(std::string_view nodeName, std::string_view
     return std::nullopt;
 }
 
+void LayerRules::nameLayers(LayerTable &layers) const {
+    for (auto it = m_rules.rbegin(); it != m_rules.rend(); ++it) // backwards: the first rule is applied last
+        if (!it->name.empty() && layers.find(it->layer)) layers.ensure(it->layer).name = it->name;
+}
+
 namespace {
 
 std::string_view trim(std::string_view s) {
@@ -81,7 +86,12 @@ LayerRules LayerRules::fromString(std::string_view text) {
             throw Error(source, "rule " + std::to_string(index) + " '" + std::string(item) +
                                     "' has no '=' (expected glob=layer)");
         const std::string_view pattern = trim(item.substr(0, eq));
-        const std::string_view number = trim(item.substr(eq + 1));
+        std::string_view number = trim(item.substr(eq + 1));
+        std::string_view name;
+        if (const std::size_t colon = number.find(':'); colon != std::string_view::npos) {
+            name = trim(number.substr(colon + 1));
+            number = trim(number.substr(0, colon));
+        }
         if (pattern.empty())
             throw Error(source, "rule " + std::to_string(index) + " '" + std::string(item) +
                                     "' has an empty pattern");
@@ -94,7 +104,7 @@ LayerRules LayerRules::fromString(std::string_view text) {
             throw Error(source, "rule " + std::to_string(index) + " '" + std::string(item) +
                                     "': layer " + std::to_string(layer) + " is out of range 0.." +
                                     std::to_string(kMaxLayers - 1));
-        rules.add({std::string(pattern), layer});
+        rules.add({std::string(pattern), layer, std::string(name)});
     }
     return rules;
 }
@@ -128,8 +138,8 @@ LayerRules LayerRules::fromJsonText(std::string_view text, const std::string &so
         const std::string where = "rule " + std::to_string(i);
         if (!r.is_object()) throw Error(source, where + " must be an object {\"match\":…, \"layer\":…}");
         for (const auto &[key, value] : r.items())
-            if (key != "match" && key != "layer")
-                throw Error(source, where + ": unknown key '" + key + "' (expected match, layer)");
+            if (key != "match" && key != "layer" && key != "name")
+                throw Error(source, where + ": unknown key '" + key + "' (expected match, layer, name)");
         const auto m = r.find("match");
         const auto l = r.find("layer");
         if (m == r.end() || !m->is_string() || m->get<std::string>().empty())
@@ -140,7 +150,9 @@ LayerRules LayerRules::fromJsonText(std::string_view text, const std::string &so
         if (layer < 0 || layer >= kMaxLayers)
             throw Error(source, where + ": layer " + std::to_string(layer) + " is out of range 0.." +
                                     std::to_string(kMaxLayers - 1));
-        rules.add({m->get<std::string>(), int(layer)});
+        const auto n = r.find("name");
+        if (n != r.end() && !n->is_string()) throw Error(source, where + ": \"name\" must be a string");
+        rules.add({m->get<std::string>(), int(layer), n != r.end() ? n->get<std::string>() : std::string()});
     }
     return rules;
 }

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <bit>
 #include <map>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -20,12 +19,10 @@ struct PositionKey {
     bool operator==(const PositionKey &) const = default;
 };
 
-struct PositionKeyHash {
-    size_t operator()(const PositionKey &k) const {
-        return size_t((uint64_t(k.x) * 0x9e3779b97f4a7c15ull) ^ (uint64_t(k.y) * 0xc2b2ae3d27d4eb4full) ^
-                      (uint64_t(k.z) * 0x165667b19e3779f9ull));
-    }
-};
+size_t hashOf(const PositionKey &k) {
+    return size_t((uint64_t(k.x) * 0x9e3779b97f4a7c15ull) ^ (uint64_t(k.y) * 0xc2b2ae3d27d4eb4full) ^
+                  (uint64_t(k.z) * 0x165667b19e3779f9ull));
+}
 
 PositionKey keyOf(const glm::vec3 &p) {
     // +0 and −0 are the same point.
@@ -33,35 +30,92 @@ PositionKey keyOf(const glm::vec3 &p) {
     return {bits(p.x), bits(p.y), bits(p.z)};
 }
 
-/// The closure of the union of `group`'s meshes.
+/// Positions → welded vertex numbers, by exact position: an open-addressing table sized once,
+/// so a million-triangle mesh welds without a node per vertex.
+class PositionWelder {
+public:
+    explicit PositionWelder(size_t expected) {
+        size_t size = 16;
+        while (size < 2 * expected) size *= 2;
+        m_slots.assign(size, kEmpty);
+        m_keys.reserve(expected);
+    }
+    uint32_t add(const glm::vec3 &p) {
+        const PositionKey key = keyOf(p);
+        size_t slot = hashOf(key) & (m_slots.size() - 1);
+        while (m_slots[slot] != kEmpty) {
+            if (m_keys[m_slots[slot]] == key) return m_slots[slot];
+            slot = (slot + 1) & (m_slots.size() - 1);
+        }
+        m_slots[slot] = uint32_t(m_keys.size());
+        m_keys.push_back(key);
+        return m_slots[slot];
+    }
+    size_t count() const { return m_keys.size(); }
+
+private:
+    static constexpr uint32_t kEmpty = 0xffffffffu;
+    std::vector<uint32_t> m_slots;
+    std::vector<PositionKey> m_keys;
+};
+
+/// An edge between welded vertices, undirected, with the direction a triangle used it in.
+struct UsedEdge {
+    uint32_t low;  ///< the smaller vertex number
+    uint32_t high; ///< the larger
+    bool upward;   ///< the triangle went from `low` to `high`
+};
+
+/// Closed: every undirected edge is used exactly twice, once in each direction. The uses are
+/// grouped by their smaller vertex (a counting sort, linear), and each vertex's few uses are
+/// checked among themselves.
+bool everyEdgeUsedOnceEachWay(const std::vector<UsedEdge> &edges, size_t vertices) {
+    std::vector<uint32_t> start(vertices + 1, 0);
+    for (const UsedEdge &e : edges) ++start[e.low + 1];
+    for (size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
+    // Each use as (high << 1 | upward), in its vertex's slice.
+    std::vector<uint64_t> uses(edges.size());
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (const UsedEdge &e : edges) uses[fill[e.low]++] = uint64_t(e.high) << 1 | uint64_t(e.upward);
+    for (size_t v = 0; v < vertices; ++v) {
+        const auto first = uses.begin() + start[v], last = uses.begin() + start[v + 1];
+        if ((last - first) % 2 != 0) return false;
+        std::sort(first, last);
+        for (auto it = first; it != last; it += 2)
+            if (it[0] >> 1 != it[1] >> 1 || (it[0] & 1) != 0 || (it[1] & 1) != 1 ||
+                (it + 2 != last && it[2] >> 1 == it[0] >> 1))
+                return false;
+    }
+    return true;
+}
+
 MeshClosure closureOf(const Scene &scene, const std::vector<size_t> &group) {
-    std::unordered_map<PositionKey, uint32_t, PositionKeyHash> welded;
-    // Directed welded edge (from, to) → how often it is used; an undirected edge is closed when
-    // both directions are used exactly once.
-    std::unordered_map<uint64_t, uint32_t> directedUses;
+    size_t positions = 0, triangles = 0;
+    for (const size_t meshIndex : group) {
+        positions += scene.meshes[meshIndex].positions.size();
+        triangles += scene.meshes[meshIndex].indices.size();
+    }
+    PositionWelder welder(positions);
+    std::vector<UsedEdge> edges;
+    edges.reserve(3 * triangles);
     double sixTimesVolume = 0.0;
+    std::vector<uint32_t> weldedIndex;
     for (const size_t meshIndex : group) {
         const TriangleMesh &mesh = scene.meshes[meshIndex];
-        std::vector<uint32_t> weldedIndex(mesh.positions.size());
-        for (size_t i = 0; i < mesh.positions.size(); ++i)
-            weldedIndex[i] = welded.try_emplace(keyOf(mesh.positions[i]), uint32_t(welded.size())).first->second;
+        weldedIndex.resize(mesh.positions.size());
+        for (size_t i = 0; i < mesh.positions.size(); ++i) weldedIndex[i] = welder.add(mesh.positions[i]);
         for (const glm::uvec3 &tri : mesh.indices) {
             if (tri.x >= weldedIndex.size() || tri.y >= weldedIndex.size() || tri.z >= weldedIndex.size())
                 return MeshClosure::Open;
             const uint32_t a = weldedIndex[tri.x], b = weldedIndex[tri.y], c = weldedIndex[tri.z];
             if (a == b || b == c || c == a) continue;
             for (const auto &[from, to] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
-                ++directedUses[uint64_t(from) << 32 | to];
+                edges.push_back({std::min(from, to), std::max(from, to), from < to});
             const glm::dvec3 p0(mesh.positions[tri.x]), p1(mesh.positions[tri.y]), p2(mesh.positions[tri.z]);
             sixTimesVolume += glm::dot(p0, glm::cross(p1, p2));
         }
     }
-    if (directedUses.empty()) return MeshClosure::Open;
-    for (const auto &[edge, uses] : directedUses) {
-        const uint64_t reversed = (edge << 32) | (edge >> 32);
-        const auto it = directedUses.find(reversed);
-        if (uses != 1 || it == directedUses.end() || it->second != 1) return MeshClosure::Open;
-    }
+    if (edges.empty() || !everyEdgeUsedOnceEachWay(edges, welder.count())) return MeshClosure::Open;
     if (sixTimesVolume > 0.0) return MeshClosure::Outward;
     if (sixTimesVolume < 0.0) return MeshClosure::Inward;
     return MeshClosure::Open;

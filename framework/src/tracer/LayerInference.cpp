@@ -144,7 +144,13 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
     const int firstLayer = std::clamp(settings.firstLayer, 0, kMaxLayers - 1);
     std::vector<int> assigned(parts.size(), -1);
     std::vector<float> confidence(parts.size(), 0.f);
-    {
+    if (parts.size() == 1) {
+        // One part and no other triangle to enclose it (spheres and planes never do): the first
+        // peel takes it, wholly seen from outside. A one-mesh file (an STL, a scan) so skips a
+        // BVH built only to find that out.
+        assigned[0] = firstLayer;
+        confidence[0] = firstLayer == kMaxLayers - 1 ? 0.f : 1.f;
+    } else {
         // The tracer reads the scene; layers are written back only after it is gone.
         const Tracer tracer(scene);
         std::vector<char> active(meshCount, 0);

@@ -30,7 +30,7 @@
 ///     Ctrl+Z                           undo
 ///     Ctrl+Shift+Z, Ctrl+Y             redo
 ///     a dropped .json file             load it as a session
-///     a dropped model file             open it (the lens stack stays)
+///     dropped model files              open them, several as layers in the order given (the lens stack stays)
 ///     resize                           render at the new framebuffer size
 ///
 /// Undo: every edit function and every gesture (press to release) is one step; a run of
@@ -108,11 +108,16 @@ public:
     /// The view's renderer. It is replaced when another scene opens (see
     /// setSceneChangedCallback); a running one is stopped and its successor started.
     RenderSession &renderSession();
+    /// The scene's model file or builtin:NAME; the first file when several are layered.
     const std::string &sceneSource() const;
+    /// Every file of the scene, the outermost layer's first.
+    std::vector<std::string> sceneSources() const;
     const SceneLoadOptions &sceneLoadOptions() const;
     /// Opens another scene with `options`: the lens stack stays, the camera is chosen afresh,
     /// every layer is visible again, and the history starts anew. On error nothing changes.
     void openScene(const std::string &source, const SceneLoadOptions &options = {});
+    /// Opens several model files as the layers of one scene (loadScene(std::span)), as openScene.
+    void openScenes(const std::vector<std::string> &sources, const SceneLoadOptions &options = {});
 
     // --- session files ---------------------------------------------------------------------
     /// The session as a file holds it: scene, camera in world units, layer rules, visible

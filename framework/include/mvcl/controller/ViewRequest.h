@@ -19,6 +19,9 @@ namespace mvcl {
 struct ViewRequest {
     /// Model path or builtin:NAME; empty = the scene the session file names.
     std::string source;
+    /// Further model files, layered inside `source` in this order (several files as layers:
+    /// loadScene(std::span)). Used only with `source`.
+    std::vector<std::string> moreSources;
     /// Lens-stack (session) file: lenses, and the scene, camera and layer rules unless given
     /// here. Empty = none.
     std::filesystem::path sessionFile;

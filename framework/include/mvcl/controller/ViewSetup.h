@@ -5,7 +5,7 @@
 /// 1. prepare(): read the session file, stack the request's lenses above the file's, pick the
 ///    scene (the request's, else the file's) and merge the layer rules (the request's first,
 ///    so they win over the file's);
-/// 2. the app loads the scene: loadScene(setup.source, setup.loadOptions);
+/// 2. the app loads the scene: loadScene(setup.sources(), setup.loadOptions);
 /// 3. camera(): the request's scene camera, else the session file's camera (a scene camera by
 ///    name or an explicit look-at in world units), else a built-in scene's own view, else a
 ///    framing of the whole scene; then the request's eye/target/up/fov override parts of it;
@@ -20,6 +20,7 @@
 #include <mvcl/view/Camera.h>
 
 #include <string>
+#include <vector>
 
 namespace mvcl {
 
@@ -29,12 +30,17 @@ struct MVCL_EXPORT ViewSetup {
     /// The scene to load: model path or builtin:NAME (a relative path in a session file comes
     /// resolved against the file's folder).
     std::string source;
+    /// Further model files layered inside `source` (the request's, else the session file's).
+    std::vector<std::string> moreSources;
     /// The request's load options with the merged layer rules (the request's first, then the
     /// session file's).
     SceneLoadOptions loadOptions;
     /// The session file as read (or empty), with the request's lenses on top; its camera is
     /// still in world units or names a scene camera.
     LensStackDescription session;
+
+    /// `source` followed by `moreSources`: what loadScene reads.
+    std::vector<std::string> sources() const;
 
     /// Steps 1: reads the session file and parses the lens specs, without loading the scene.
     /// Throws mvcl::Error(sessionFile, problem) for a bad file and mvcl::Error(request.origin,

@@ -52,6 +52,8 @@ struct LensStackCamera {
 
 struct LensStackDescription {
     std::string scene; ///< model path or builtin:NAME; empty = none given
+    /// Further model files layered inside `scene` ("scene": ["skin.stl", "bone.stl"]), in order.
+    std::vector<std::string> moreScenes;
     std::optional<LensStackCamera> camera;
     LayerRules layerRules;
     /// Layers primary rays may hit outside every lens (the base policy's primary layer mask).

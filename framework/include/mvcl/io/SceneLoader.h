@@ -1,17 +1,23 @@
 #pragma once
 /// \file SceneLoader.h
-/// One entry point for every scene source: "builtin:<name>", .gltf or .glb. Applies layer rules,
-/// infers the layers nobody assigned, and gives model files without lights a default light rig
-/// (unless told not to), and sets the scene's layer contact tolerance.
+/// One entry point for every scene source: "builtin:<name>" or a model file (.gltf, .glb, .obj,
+/// .stl, .ply; the content decides when it disagrees with the extension), or several model files
+/// as the layers of one scene. Applies layer rules, infers the layers nobody assigned, names the
+/// layers, gives model files without lights a default light rig (unless told not to), and sets
+/// the scene's layer contact tolerance.
 
 #include <mvcl/core/Export.h>
 
 #include <mvcl/model/LayerContact.h>
 #include <mvcl/model/LayerRules.h>
+#include <mvcl/model/MeshFileLoader.h>
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/LayerInference.h>
 
 #include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
 #include <string_view>
 
 namespace mvcl {
@@ -28,9 +34,22 @@ struct SceneLoadOptions {
     DefaultLights defaultLights = DefaultLights::WhenTheFileHasNone;
     /// Becomes Scene::layerContact when enabled (model files carry none of their own).
     LayerContact layerContact;
+    /// Up axis and unit of files that do not say (OBJ, STL, PLY); unset = y and metres, which
+    /// Scene::report.assumptions then records.
+    std::optional<UpAxis> upAxis;
+    std::optional<LengthUnit> unit;
 };
 
 /// Throws mvcl::Error naming the source and the problem.
 MVCL_EXPORT Scene loadScene(std::string_view source, const SceneLoadOptions &options = {});
+
+/// Several model files as one scene: file i's meshes go to layer i (the first file is the
+/// outermost) unless a layer rule places them, and layer i is named after file i's stem unless a
+/// rule names it. The files are placed in one world (their own coordinates, re-centred once).
+/// One source is the same as loadScene(source). Built-in scenes cannot be combined with files.
+MVCL_EXPORT Scene loadScene(std::span<const std::string> sources, const SceneLoadOptions &options = {});
+
+/// The sources of a scene as text: the path itself for one, "a.stl + b.stl" for several.
+MVCL_EXPORT std::string describeSources(std::span<const std::string> sources);
 
 } // namespace mvcl

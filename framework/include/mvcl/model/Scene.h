@@ -28,11 +28,15 @@ namespace mvcl {
 /// What a loader noticed while reading a file; shown by `mvcl-render --info`.
 struct LoadReport {
     std::vector<std::string> warnings;
+    /// What a loader assumed because the file does not say (up axis, unit), one phrase each.
+    std::vector<std::string> assumptions;
     std::size_t degenerateTrianglesDropped = 0;
     std::size_t nonUnitNormalsFixed = 0;
     std::size_t primitivesSkipped = 0; ///< points and lines
     std::size_t texturesDecoded = 0;   ///< images decoded into textures
     std::size_t textureBytes = 0;      ///< memory held by decoded images and their mip chains
+    /// Wall time spent inferring layers by containment (0 when nothing was inferred).
+    double inferenceMilliseconds = 0.0;
 };
 
 struct MVCL_EXPORT Scene {

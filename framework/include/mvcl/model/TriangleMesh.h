@@ -22,6 +22,7 @@ enum class LayerSource : uint8_t {
     Extras,     ///< glTF `extras.layer` on the node or the mesh
     Rule,       ///< a user rule (name glob → layer)
     Inferred,   ///< automatic inference by containment
+    File,       ///< one file of several loaded as layers: the file's place in the list
 };
 
 struct TriangleMesh {

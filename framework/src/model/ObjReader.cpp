@@ -1,0 +1,267 @@
+// Wavefront OBJ through tinyobjloader, which parses; everything it hands back is checked here:
+// tinyobjloader keeps indices it cannot resolve, and reads a number it cannot parse ("nan",
+// "1e999", "x") as 0, so the numbers of v, vn and vt lines are checked before it runs. Each
+// group or object ("g", "o") becomes one part per material, named after it; MTL colours become
+// materials. Polygons are split into fans here, not by tinyobjloader, so that nothing reads a
+// vertex before its index is checked.
+
+#include "MeshFileData_p.h"
+
+#include <tiny_obj_loader.h>
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <istream>
+#include <map>
+#include <sstream>
+#include <streambuf>
+#include <unordered_map>
+
+namespace mvcl::meshfile {
+
+namespace {
+
+/// An istream over the file's bytes, without a copy.
+class MemoryBuffer : public std::streambuf {
+public:
+    explicit MemoryBuffer(std::span<const std::uint8_t> bytes) {
+        char *begin = const_cast<char *>(reinterpret_cast<const char *>(bytes.data())); // read only
+        setg(begin, begin, begin + bytes.size());
+    }
+};
+
+/// Material libraries are read only from the OBJ's folder or below it: a hostile file must not
+/// make the loader open /etc/passwd or a device.
+class FolderMaterialReader : public tinyobj::MaterialReader {
+public:
+    FolderMaterialReader(const std::filesystem::path &directory, std::vector<std::string> &warnings)
+        : m_directory(directory), m_warnings(warnings) {}
+
+    bool operator()(const std::string &library, std::vector<tinyobj::material_t> *materials,
+                    std::map<std::string, int> *names, std::string *warn, std::string *err) override {
+        const std::filesystem::path relative(library);
+        const bool inside = !relative.empty() && relative.is_relative() &&
+                            std::none_of(relative.begin(), relative.end(), [](const auto &c) { return c == ".."; });
+        if (m_directory.empty() || !inside) {
+            m_warnings.push_back("material library '" + library + "' not read" +
+                                 (m_directory.empty() ? "" : " (only files beside the OBJ file are read)"));
+            return false;
+        }
+        const std::filesystem::path path = m_directory / relative;
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(path, ec)) {
+            m_warnings.push_back("material library '" + library + "' not found; default materials used");
+            return false;
+        }
+        std::ifstream stream(path, std::ios::binary);
+        tinyobj::LoadMtl(names, materials, &stream, warn, err);
+        return true;
+    }
+
+private:
+    std::filesystem::path m_directory;
+    std::vector<std::string> &m_warnings;
+};
+
+/// Every number on the v, vn and vt lines parses and is finite; fails naming the line otherwise.
+void checkVertexNumbers(const ReadInput &input) {
+    const std::string_view text(reinterpret_cast<const char *>(input.bytes.data()), input.bytes.size());
+    std::size_t line = 0;
+    for (std::size_t pos = 0; pos < text.size();) {
+        ++line;
+        std::size_t end = text.find('\n', pos);
+        if (end == std::string_view::npos) end = text.size();
+        std::string_view l = text.substr(pos, end - pos);
+        pos = end + 1;
+        while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
+        if (l.size() < 2 || l[0] != 'v' || !(l[1] == ' ' || l[1] == '\t' || l[1] == 'n' || l[1] == 't')) continue;
+        std::size_t i = l.find_first_of(" \t");
+        if (i == std::string_view::npos) continue;
+        const std::string_view keyword = l.substr(0, i);
+        if (keyword != "v" && keyword != "vn" && keyword != "vt") continue;
+        while (i < l.size()) {
+            i = l.find_first_not_of(" \t\r", i);
+            if (i == std::string_view::npos || l[i] == '#') break;
+            std::size_t j = l.find_first_of(" \t\r", i);
+            if (j == std::string_view::npos) j = l.size();
+            std::string_view word = l.substr(i, j - i);
+            i = j;
+            std::string_view digits = word.starts_with('+') ? word.substr(1) : word;
+            double value = 0.0;
+            const auto [stop, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+            if (ec == std::errc::result_out_of_range || (ec == std::errc() && stop == digits.data() + digits.size() && !std::isfinite(value)))
+                fail(input, "line " + std::to_string(line) + ": " + std::string(keyword) + " coordinate '" +
+                                std::string(word.substr(0, 40)) + "' is not finite");
+            if (ec != std::errc() || stop != digits.data() + digits.size())
+                fail(input, "line " + std::to_string(line) + ": " + std::string(keyword) + " coordinate '" +
+                                std::string(word.substr(0, 40)) + "' is not a number");
+        }
+    }
+}
+
+glm::vec3 colour(const tinyobj::real_t (&c)[3]) {
+    glm::vec3 v{float(c[0]), float(c[1]), float(c[2])};
+    for (int k = 0; k < 3; ++k) v[k] = std::isfinite(v[k]) ? std::clamp(v[k], 0.f, 1.f) : 0.f;
+    return v;
+}
+
+Material materialOf(const tinyobj::material_t &m) {
+    Material out;
+    out.name = m.name;
+    out.diffuse = colour(m.diffuse);
+    // MTL files set Ka anywhere from black to white regardless of Kd; the diffuse colour under
+    // the scene's ambient light reads as the other loaders' materials do.
+    out.ambient = out.diffuse;
+    const glm::vec3 ks = colour(m.specular);
+    out.specular = std::max({ks.x, ks.y, ks.z});
+    if (out.specular > 0.f) out.specularColor = ks / out.specular;
+    out.shininess = std::isfinite(m.shininess) ? std::clamp(float(m.shininess), 1.f, 1000.f) : 32.f;
+    out.emission = colour(m.emission);
+    const float dissolve = std::isfinite(m.dissolve) ? std::clamp(float(m.dissolve), 0.f, 1.f) : 1.f;
+    out.transparency = 1.f - dissolve;
+    if (std::isfinite(m.ior) && m.ior >= 1.0) out.ior = float(m.ior);
+    return out;
+}
+
+/// One part per (shape, material) with its own vertex numbering: OBJ indexes positions and
+/// normals separately, a part's vertex is a (position, normal) pair. Without normals a part's
+/// vertex is a position, found through one array over the file's positions (which part last
+/// numbered it, and as what) instead of a hash map: a position shared by parts used in turns is
+/// then copied into each, which changes no geometry.
+class PartBuilder {
+public:
+    PartBuilder(const ReadInput &input, const tinyobj::attrib_t &attrib, bool hasColors)
+        : m_input(input), m_attrib(attrib), m_hasColors(hasColors), m_owner(attrib.vertices.size() / 3, kNone),
+          m_number(attrib.vertices.size() / 3, 0) {}
+
+    std::uint32_t vertex(MeshPart &part, std::size_t partId, std::unordered_map<std::uint64_t, std::uint32_t> &numbers,
+                         const tinyobj::index_t &corner, bool withNormals) {
+        const std::size_t positions = m_attrib.vertices.size() / 3;
+        const std::size_t normals = m_attrib.normals.size() / 3;
+        const auto where = [&part] { return part.name.empty() ? std::string() : "'" + part.name + "': "; };
+        if (corner.vertex_index < 0 || std::size_t(corner.vertex_index) >= positions)
+            fail(m_input, where() + "a face refers to vertex " + std::to_string(corner.vertex_index + 1) +
+                              ", but the file has " + std::to_string(positions) + " vertices");
+        const int normal = withNormals ? corner.normal_index : -1;
+        if (normal >= 0 && std::size_t(normal) >= normals)
+            fail(m_input, where() + "a face refers to normal " + std::to_string(normal + 1) +
+                              ", but the file has " + std::to_string(normals) + " normals");
+        const std::size_t v = std::size_t(corner.vertex_index);
+        const auto number = std::uint32_t(part.positions.size());
+        if (withNormals) {
+            const std::uint64_t key = (std::uint64_t(std::uint32_t(corner.vertex_index)) << 32) | std::uint32_t(normal);
+            const auto [it, inserted] = numbers.try_emplace(key, number);
+            if (!inserted) return it->second;
+        } else {
+            if (m_owner[v] == partId) return m_number[v];
+            m_owner[v] = partId;
+            m_number[v] = number;
+        }
+        const glm::dvec3 p(m_attrib.vertices[3 * v], m_attrib.vertices[3 * v + 1], m_attrib.vertices[3 * v + 2]);
+        if (!isFinite(p))
+            fail(m_input, "vertex " + std::to_string(v + 1) + " is (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
+                              ", " + std::to_string(p.z) + "), not finite");
+        part.positions.push_back(p);
+        if (withNormals) {
+            const std::size_t n = std::size_t(normal);
+            part.normals.emplace_back(m_attrib.normals[3 * n], m_attrib.normals[3 * n + 1], m_attrib.normals[3 * n + 2]);
+        }
+        if (m_hasColors) {
+            glm::vec3 c{float(m_attrib.colors[3 * v]), float(m_attrib.colors[3 * v + 1]), float(m_attrib.colors[3 * v + 2])};
+            for (int k = 0; k < 3; ++k) c[k] = std::isfinite(c[k]) ? std::clamp(c[k], 0.f, 1.f) : 0.f;
+            part.colors.push_back(c);
+        }
+        return number;
+    }
+
+private:
+    static constexpr std::size_t kNone = ~std::size_t(0);
+    const ReadInput &m_input;
+    const tinyobj::attrib_t &m_attrib;
+    bool m_hasColors;
+    std::vector<std::size_t> m_owner;   ///< per file position: the part that numbered it last
+    std::vector<std::uint32_t> m_number; ///< and the number it has there
+};
+
+} // namespace
+
+MeshFileData readObj(const ReadInput &input) {
+    checkVertexNumbers(input);
+    MeshFileData data;
+    MemoryBuffer buffer(input.bytes);
+    std::istream stream(&buffer);
+    FolderMaterialReader materialReader(input.directory, data.warnings);
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warn, err;
+    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &stream, &materialReader,
+                                     /*triangulate=*/false, /*default_vcols_fallback=*/false);
+    if (!ok) {
+        std::string problem = err.empty() ? "not a valid OBJ file" : err;
+        problem = problem.substr(0, problem.find('\n'));
+        fail(input, problem);
+    }
+    if (!warn.empty()) {
+        std::istringstream lines(warn);
+        std::size_t count = 0;
+        for (std::string line; std::getline(lines, line);)
+            if (!line.empty() && count++ < 8) data.warnings.push_back(line);
+    }
+    for (const tinyobj::material_t &m : materials) data.materials.push_back(materialOf(m));
+
+    const bool hasColors = !attrib.colors.empty() && attrib.colors.size() == attrib.vertices.size();
+    PartBuilder builder(input, attrib, hasColors);
+    std::size_t triangles = 0, skippedFaces = 0, otherPrimitives = 0;
+    for (const tinyobj::shape_t &shape : shapes) {
+        const tinyobj::mesh_t &mesh = shape.mesh;
+        otherPrimitives += shape.lines.num_line_vertices.size() + shape.points.indices.size();
+        // A part has per-vertex normals only when every corner of it names one.
+        const bool withNormals = !mesh.indices.empty() && !attrib.normals.empty() &&
+                                 std::all_of(mesh.indices.begin(), mesh.indices.end(),
+                                             [](const tinyobj::index_t &i) { return i.normal_index >= 0; });
+        std::map<int, std::size_t> partOfMaterial;
+        std::vector<std::unordered_map<std::uint64_t, std::uint32_t>> numbers;
+        const std::size_t firstPart = data.parts.size();
+        std::size_t offset = 0;
+        for (std::size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
+            const std::size_t n = mesh.num_face_vertices[f];
+            if (offset + n > mesh.indices.size()) fail(input, "'" + shape.name + "': face " + std::to_string(f) + " is cut short");
+            const int materialId = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
+            const int material = materialId >= 0 && std::size_t(materialId) < materials.size() ? materialId : -1;
+            if (n < 3) {
+                ++skippedFaces;
+                offset += n;
+                continue;
+            }
+            const auto [it, inserted] = partOfMaterial.try_emplace(material, data.parts.size());
+            if (inserted) {
+                MeshPart &part = data.parts.emplace_back();
+                part.name = shape.name;
+                part.material = material;
+                numbers.emplace_back();
+            }
+            MeshPart &part = data.parts[it->second];
+            auto &partNumbers = numbers[it->second - firstPart];
+            const std::uint32_t first = builder.vertex(part, it->second, partNumbers, mesh.indices[offset], withNormals);
+            std::uint32_t previous = builder.vertex(part, it->second, partNumbers, mesh.indices[offset + 1], withNormals);
+            for (std::size_t k = 2; k < n; ++k) {
+                const std::uint32_t next = builder.vertex(part, it->second, partNumbers, mesh.indices[offset + k], withNormals);
+                checkTriangleCount(input, ++triangles);
+                part.triangles.emplace_back(first, previous, next);
+                previous = next;
+            }
+            offset += n;
+        }
+    }
+    if (skippedFaces) data.warnings.push_back(std::to_string(skippedFaces) + " faces with fewer than 3 corners skipped");
+    if (otherPrimitives) data.warnings.push_back("lines and points are skipped (only triangles are ray traced)");
+    if (triangles == 0) fail(input, "the OBJ file holds no faces");
+    return data;
+}
+
+} // namespace mvcl::meshfile
