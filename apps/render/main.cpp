@@ -311,6 +311,11 @@ int run(const RenderCommandLine &cl) {
     ProgressBar bar(cl.progress && isatty(STDERR_FILENO));
     session.setProgressCallback([&](float f) { bar.update(f); });
     const RenderPassStats stats = session.renderUntilIdle();
+    // A faulty plugin costs its own lens only: it renders as disabled, and the user is told why
+    // (after the render, so that faults in the session's context are included).
+    for (const std::shared_ptr<Lens> &lens : lenses.lenses())
+        if (const std::string fault = lens->fault(); !fault.empty())
+            std::fprintf(stderr, "mvcl-render: warning: %s; the lens is disabled\n", fault.c_str());
     bar.finish();
     Framebuffer image = session.image();
     drawLensOutlines(lenses, image);

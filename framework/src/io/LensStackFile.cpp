@@ -222,8 +222,10 @@ std::shared_ptr<Lens> readLens(const Json &value, const LensRegistry &registry, 
             }
         }
     }
+    // A lens whose plugin fails is kept, disabled with its fault(), so that nothing the file
+    // says is lost when it is written again; only an invalid region is the file's error.
     try {
-        lens->commit();
+        lens->commitOrDisable();
     } catch (const Error &e) {
         where.fail(e.what());
     }
