@@ -170,6 +170,7 @@ ViewRequest viewRequest(const RenderCommandLine &cl) {
         for (const LayerRule &rule : fileRules.rules()) request.loadOptions.layerRules.add(rule);
     }
     request.loadOptions.defaultLights = cl.defaultLights ? DefaultLights::WhenTheFileHasNone : DefaultLights::Never;
+    request.loadOptions.memoryBudgetBytes = cl.memoryBudgetMiB << 20;
     if (!cl.layerContact.empty()) {
         try {
             request.loadOptions.layerContact = LayerContact::parse(cl.layerContact);

@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <string>
 
+#include <unistd.h>
+
 namespace mvcl {
 
 namespace {
@@ -36,6 +38,12 @@ void addDefaultLights(Scene &scene) {
 
 } // namespace
 
+std::uint64_t defaultMemoryBudgetBytes() {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+    if (pages <= 0 || pageSize <= 0) return 4ull << 30; // unknown: a budget any machine mvcl runs on has
+    return std::uint64_t(pages) * std::uint64_t(pageSize) / 2;
+}
+
 Scene loadScene(std::string_view source, const SceneLoadOptions &options) {
     Scene scene;
     if (source.starts_with(kBuiltinPrefix)) {
@@ -48,6 +56,7 @@ Scene loadScene(std::string_view source, const SceneLoadOptions &options) {
             throw Error(std::string(source), "unknown scene type (expected .gltf, .glb or builtin:<name>)");
         GltfLoadOptions gltfOptions;
         gltfOptions.layerRules = options.layerRules;
+        gltfOptions.maxGeometryBytes = options.memoryBudgetBytes ? options.memoryBudgetBytes : defaultMemoryBudgetBytes();
         scene = loadGltf(path, gltfOptions);
         if (scene.lights.empty() && options.defaultLights == DefaultLights::WhenTheFileHasNone)
             addDefaultLights(scene);

@@ -28,7 +28,14 @@ struct SceneLoadOptions {
     DefaultLights defaultLights = DefaultLights::WhenTheFileHasNone;
     /// Becomes Scene::layerContact when enabled (model files carry none of their own).
     LayerContact layerContact;
+    /// A model whose geometry would need more memory than this (bytes; meshes and BVH, estimated
+    /// before loading: GltfLoadOptions::maxGeometryBytes) is refused with the estimate.
+    /// 0 = defaultMemoryBudgetBytes().
+    std::uint64_t memoryBudgetBytes = 0;
 };
+
+/// Half the machine's physical memory: what a model may take when nobody says otherwise.
+MVCL_EXPORT std::uint64_t defaultMemoryBudgetBytes();
 
 /// Throws mvcl::Error naming the source and the problem.
 MVCL_EXPORT Scene loadScene(std::string_view source, const SceneLoadOptions &options = {});
