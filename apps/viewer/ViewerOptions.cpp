@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <cstdio>
 #include <map>
 
@@ -15,11 +16,15 @@ int parseViewerOptions(int argc, char **argv, ViewerOptions &options) {
                  "Press F1 in the window for every mouse and key binding.",
                  "mvcl-viewer"};
     std::string size, layerRule;
+    std::uint64_t memoryBudgetMiB = 0;
     std::filesystem::path script;
     app.add_option("scene", options.request.source, "model.gltf | model.glb | builtin:NAME (default: the session's scene)");
     app.add_option("--lenses,--session", options.request.sessionFile, "session (lens-stack) file to open");
     app.add_option("--lens", options.request.lensSpecs, "one more lens on top: TYPE:key=value,... (repeatable)");
     app.add_option("--layer-rule", layerRule, "inline layer rules \"glob=layer;...\" (win over the session's)");
+    app.add_option("--memory-budget", memoryBudgetMiB,
+                   "refuse a model whose meshes and BVH would need more MiB (default: the session's, else half the memory)")
+        ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40));
     app.add_option("--size", size, "window size WxH in screen units (default 1600x900)");
     app.add_option("--threads", options.threads, "render threads, 0 = all cores")->check(CLI::Range(0, 1024));
     const std::map<std::string, SamplingMode> modes = {
@@ -47,6 +52,7 @@ int parseViewerOptions(int argc, char **argv, ViewerOptions &options) {
             options.height = h;
         }
         if (!layerRule.empty()) options.request.loadOptions.layerRules = LayerRules::fromString(layerRule);
+        options.request.loadOptions.memoryBudgetBytes = memoryBudgetMiB << 20;
     } catch (const CLI::CallForHelp &) {
         std::fputs(app.help().c_str(), stdout);
         return 0;
