@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -135,4 +136,26 @@ quit
                                            quoted((dir / "faulty-reopen.txt").string()), environment);
     ASSERT_EQ(reopen.exitCode, 0) << reopen.output;
     EXPECT_NE(reopen.output.find(reported), std::string::npos) << reopen.output;
+}
+
+TEST(ViewerEndToEnd, AtStartARecoveryCopyNewerThanItsSessionIsOffered) {
+    ASSERT_EQ(runCommand("command -v xvfb-run").exitCode, 0) << "xvfb-run is missing (scripts/bootstrap.sh installs it)";
+    const fs::path dir = viewerDir() / "recovery";
+    fs::create_directories(dir);
+    const fs::path session = dir / "work.json", recovery = dir / "work.recovery.json";
+    std::ofstream(session) << R"({"scene": "builtin:cube-in-cube", "lenses": []})";
+    std::ofstream(recovery) << R"({"scene": "builtin:cube-in-cube", "lenses": [{"type": "achromatic"}]})";
+    writeScript(dir / "quit.txt", "wait-converged\nquit\n");
+    const std::string args = "--session " + quoted(session.string()) + " --script " + quoted((dir / "quit.txt").string());
+    const std::string offer = "the last session was not saved; its recovery copy is " + recovery.string();
+
+    fs::last_write_time(recovery, fs::last_write_time(session) + std::chrono::seconds(10));
+    const CommandResult newer = runViewer(args);
+    ASSERT_EQ(newer.exitCode, 0) << newer.output;
+    EXPECT_NE(newer.output.find(offer), std::string::npos) << newer.output;
+
+    fs::last_write_time(recovery, fs::last_write_time(session) - std::chrono::seconds(10));
+    const CommandResult older = runViewer(args);
+    ASSERT_EQ(older.exitCode, 0) << older.output;
+    EXPECT_EQ(older.output.find("recovery copy is"), std::string::npos) << "saved since: nothing to offer\n" << older.output;
 }
