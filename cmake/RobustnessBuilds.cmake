@@ -4,6 +4,10 @@
 #   MVCL_SANITIZE=ON       every target with AddressSanitizer + UndefinedBehaviorSanitizer; the
 #                          first report aborts the process, so a ctest run fails on any finding.
 #                          GCC or clang. Used by scripts/ci-sanitizers.sh.
+#   MVCL_SANITIZE_THREAD=ON  every target with ThreadSanitizer (clang); the first report fails
+#                          the process. Needs a oneTBB built with -fsanitize=thread as well (point
+#                          TBB_DIR at it): TSan cannot see the hand-offs inside an uninstrumented
+#                          libtbb and reports every tile as a race. Used by scripts/ci-tsan.sh.
 #   MVCL_BUILD_FUZZERS=ON  libFuzzer harnesses in tests/fuzz (clang only). The whole tree gets
 #                          coverage instrumentation (-fsanitize=fuzzer-no-link) plus ASan/UBSan,
 #                          so that libFuzzer sees the branches of the loader it is exploring.
@@ -19,7 +23,19 @@
 # Both options change flags for the whole tree, so use them in a build directory of their own.
 
 option(MVCL_SANITIZE "Build with -fsanitize=address,undefined (abort on the first report)" OFF)
+option(MVCL_SANITIZE_THREAD "Build with -fsanitize=thread (clang; with a oneTBB built the same way)" OFF)
 option(MVCL_BUILD_FUZZERS "Build the libFuzzer harnesses in tests/fuzz (clang)" OFF)
+
+if(MVCL_SANITIZE_THREAD)
+    if(MVCL_SANITIZE OR MVCL_BUILD_FUZZERS)
+        message(FATAL_ERROR "MVCL_SANITIZE_THREAD cannot be combined with AddressSanitizer (MVCL_SANITIZE, MVCL_BUILD_FUZZERS)")
+    endif()
+    if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+        message(FATAL_ERROR "MVCL_SANITIZE_THREAD needs clang; configure with -DCMAKE_CXX_COMPILER=clang++")
+    endif()
+    add_compile_options(-fsanitize=thread -fno-omit-frame-pointer)
+    add_link_options(-fsanitize=thread)
+endif()
 
 if(MVCL_SANITIZE OR MVCL_BUILD_FUZZERS)
     # -fno-sanitize-recover: UBSan otherwise prints and carries on, and the test passes.

@@ -112,6 +112,11 @@ std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::stri
                     "a fraction of the scene's size (1e-4) or in scene units (0.002units); off by default,\n"
                     "--info suggests one")
         ->type_name("D");
+    app->add_option("--memory-budget", cl.memoryBudgetMiB,
+                    "refuse a model whose meshes and BVH would need more than this many MiB\n"
+                    "(estimated before loading; default: half the physical memory)")
+        ->check(CLI::PositiveNumber)
+        ->type_name("MIB");
     app->add_option("--lenses", cl.lensFile,
                     "lens-stack JSON: lenses, and the scene, camera and layer rules unless\n"
                     "given here (command-line layer rules come first, so they win)")

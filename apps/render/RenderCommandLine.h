@@ -2,6 +2,7 @@
 // Options of mvcl-render and their parser. Kept apart from main() so the CLI's contract is
 // one readable table.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -43,6 +44,7 @@ struct RenderCommandLine {
     std::string camera;              ///< glTF camera index or name; empty = default view
     std::string layerRulesFile;
     std::string layerRules;          ///< "glob=layer;..."
+    std::uint64_t memoryBudgetMiB = 0; ///< --memory-budget; 0 = defaultMemoryBudgetBytes()
     std::string layerContact;        ///< --layer-contact, LayerContact::parse() text; empty = the session's or off
     std::string lensFile;            ///< lens-stack JSON (--lenses)
     std::vector<std::string> lensSpecs; ///< "type:key=value,..." (--lens), stacked above the file's

@@ -187,6 +187,7 @@ ViewRequest viewRequest(const RenderCommandLine &cl) {
     if (!cl.modelUp.empty()) request.loadOptions.upAxis = upAxisFromName(cl.modelUp);
     if (!cl.unit.empty()) request.loadOptions.unit = lengthUnitFromName(cl.unit);
     request.loadOptions.defaultLights = cl.defaultLights ? DefaultLights::WhenTheFileHasNone : DefaultLights::Never;
+    request.loadOptions.memoryBudgetBytes = cl.memoryBudgetMiB << 20;
     if (!cl.layerContact.empty()) {
         try {
             request.loadOptions.layerContact = LayerContact::parse(cl.layerContact);
@@ -346,6 +347,11 @@ int run(const RenderCommandLine &cl) {
     const RenderPassStats stats = session.renderUntilIdle([&](const RenderPassStats &pass) {
         if (log) log->addPass(pass, session.convergence());
     });
+    // A faulty plugin costs its own lens only: it renders as disabled, and the user is told why
+    // (after the render, so that faults in the session's context are included).
+    for (const std::shared_ptr<Lens> &lens : lenses.lenses())
+        if (const std::string fault = lens->fault(); !fault.empty())
+            std::fprintf(stderr, "mvcl-render: warning: %s; the lens is disabled\n", fault.c_str());
     bar.finish();
     Framebuffer image = session.image();
     drawLensOutlines(lenses, image);

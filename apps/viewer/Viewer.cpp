@@ -81,6 +81,7 @@ Viewer::Viewer(GLFWwindow *window, const ViewerOptions &options) : m_window(wind
     m_controller->setErrorCallback([this](const Error &e) { report(e.what()); });
     m_controller->setSceneChangedCallback([this] { m_imageCurrent = false; });
     if (!options.recovery.empty()) m_controller->setRecoveryPath(options.recovery);
+    offerRecovery(); // before any edit rewrites the copy
     m_controller->resizeView(viewSize, m_contentScale);
     m_controller->renderSession().start();
 
@@ -94,6 +95,22 @@ Viewer::~Viewer() {
     stopHistogramWorker();
     if (m_controller) m_controller->renderSession().stop();
     glfwSetDropCallback(m_window, nullptr);
+}
+
+void Viewer::offerRecovery() {
+    namespace fs = std::filesystem;
+    const fs::path recovery = m_controller->recoveryPath();
+    std::error_code ec;
+    if (recovery.empty() || !fs::is_regular_file(recovery, ec)) return;
+    const fs::path &session = m_controller->sessionPath();
+    const fs::file_time_type recovered = fs::last_write_time(recovery, ec);
+    if (ec) return;
+    if (!session.empty() && fs::is_regular_file(session, ec)) {
+        const fs::file_time_type saved = fs::last_write_time(session, ec);
+        if (!ec && recovered <= saved) return; // saved since: nothing to recover
+    }
+    report("the last session was not saved; its recovery copy is " + recovery.string() + " (open it with --session " +
+           recovery.string() + ")");
 }
 
 void Viewer::report(const std::string &message) {

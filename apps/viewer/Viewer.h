@@ -57,6 +57,9 @@ private:
     void handleViewerKeys();
     void handle(const InputEvent &event);
     void report(const std::string &message);
+    /// At start: a recovery copy newer than its session (or of a session never saved) means the
+    /// last run ended before saving; say where it is and how to open it.
+    void offerRecovery();
     void writeScreenshot(const std::string &file);
     void saveSession(const std::string &file);
     void openFile(const std::string &file);

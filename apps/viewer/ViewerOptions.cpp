@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -19,6 +20,7 @@ int parseViewerOptions(int argc, char **argv, ViewerOptions &options) {
                  "mvcl-viewer"};
     std::string size, layerRule, up, unit;
     std::vector<std::string> scenes;
+    std::uint64_t memoryBudgetMiB = 0;
     std::filesystem::path script;
     app.add_option("scene", scenes,
                    "model file (.gltf .glb .obj .stl .ply) or builtin:NAME (default: the session's scene);\n"
@@ -30,6 +32,9 @@ int parseViewerOptions(int argc, char **argv, ViewerOptions &options) {
         ->check(CLI::IsMember({"y", "z"}));
     app.add_option("--unit", unit, "length unit of OBJ, STL and PLY files (default m)")
         ->check(CLI::IsMember({"mm", "cm", "m", "in"}));
+    app.add_option("--memory-budget", memoryBudgetMiB,
+                   "refuse a model whose meshes and BVH would need more MiB (default: the session's, else half the memory)")
+        ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40));
     app.add_option("--size", size, "window size WxH in screen units (default 1600x900)");
     app.add_option("--threads", options.threads, "render threads, 0 = all cores")->check(CLI::Range(0, 1024));
     const std::map<std::string, SamplingMode> modes = {
@@ -63,6 +68,7 @@ int parseViewerOptions(int argc, char **argv, ViewerOptions &options) {
         }
         if (!up.empty()) options.request.loadOptions.upAxis = upAxisFromName(up);
         if (!unit.empty()) options.request.loadOptions.unit = lengthUnitFromName(unit);
+        options.request.loadOptions.memoryBudgetBytes = memoryBudgetMiB << 20;
     } catch (const CLI::CallForHelp &) {
         std::fputs(app.help().c_str(), stdout);
         return 0;

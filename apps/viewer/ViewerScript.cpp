@@ -68,6 +68,10 @@ bool ScriptCommand::hasWord(const std::string &w) const {
 ViewerScript ViewerScript::load(const std::filesystem::path &file) {
     std::ifstream in(file);
     if (!in) throw Error(file.string(), "cannot be read");
+    return parse(in, file);
+}
+
+ViewerScript ViewerScript::parse(std::istream &in, const std::filesystem::path &file) {
     ViewerScript script;
     script.m_file = file;
     std::string text;

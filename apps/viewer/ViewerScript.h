@@ -4,6 +4,7 @@
 // The syntax is documented in docs/viewer.md.
 
 #include <filesystem>
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,8 @@ class ViewerScript {
 public:
     /// Reads and checks `file`; throws mvcl::Error("FILE:LINE", problem).
     static ViewerScript load(const std::filesystem::path &file);
+    /// The same from text; errors name `file` (the fuzzer, tests/fuzz/ViewerScriptFuzzer.cpp).
+    static ViewerScript parse(std::istream &text, const std::filesystem::path &file);
 
     bool isEmpty() const { return m_commands.empty(); }
     bool isFinished() const { return m_next >= m_commands.size(); }

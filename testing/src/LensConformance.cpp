@@ -189,6 +189,8 @@ std::shared_ptr<Lens> cloneWithRegion(const LensFactory &create, const Lens &len
     const auto snapshot = lens->snapshot();
     if (!snapshot || snapshot->version < 1)
         return ::testing::AssertionFailure() << "a new lens is not committed";
+    if (const std::string fault = lens->fault(); !fault.empty())
+        return ::testing::AssertionFailure() << "its contribution on the defaults fails, so it is disabled: " << fault;
     if (!snapshot->enabled || !lens->isEnabled())
         return ::testing::AssertionFailure() << "a new lens is not enabled";
     if (lens->typeName() != typeName || lens->info().name != typeName)

@@ -350,3 +350,10 @@ TEST(RenderCli, RejectedEdgeCasesExitOneNamingTheFile) {
     }
     EXPECT_GE(rejected, 10);
 }
+
+TEST(RenderCli, AModelOverTheMemoryBudgetIsRefusedWithItsEstimate) {
+    const CommandResult r = runRender(quoted(dataPath("models/2CylinderEngine/2CylinderEngine.glb")) + " --memory-budget 1 --info");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("2CylinderEngine.glb: its geometry would need about"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("more than the memory budget of 1 MiB"), std::string::npos) << r.output;
+}

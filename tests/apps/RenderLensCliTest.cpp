@@ -212,3 +212,23 @@ TEST(RenderLensCli, VisibleLayersOfASessionHideLayersOutsideTheLenses) {
         for (int x = 0; x < a.width(); ++x) changed += a.at(x, y) != b.at(x, y);
     EXPECT_GT(changed, a.width() * a.height() / 4) << "the outer cube, floor and spheres (layer 0) are gone";
 }
+
+TEST(RenderLensCli, AFaultyPluginsLensIsDisabledWithAWarningAndTheRenderGoesOn) {
+    // fixture-faulty-throws: contribute() throws (tests/lens/fixtures/FixtureFaulty.cpp).
+    const fs::path image = outDir() / "faulty-lens.png", saved = outDir() / "faulty-lens.json";
+    fs::remove(image);
+    fs::remove(saved);
+    const CommandResult r = runCommand("MVCL_PLUGIN_PATH=" + quoted(MVCL_FAULTY_PLUGIN_DIR) + " " +
+                                       std::string(MVCL_RENDER_EXE) + " --no-progress builtin:cube-in-cube" + kSmall +
+                                       " --lens fixture-faulty-throws:center=[0.5,0.5] --lens achromatic:size=[0.3,0.3]" +
+                                       " --save-lenses " + quoted(saved.string()) + " -o " + quoted(image.string()));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("mvcl-render: warning: lens 'fixture-faulty-throws': contribute() failed: fixture failure; "
+                            "the lens is disabled"),
+              std::string::npos)
+        << r.output;
+    EXPECT_TRUE(fs::exists(image)) << r.output;
+    const std::string session = readText(saved);
+    EXPECT_NE(session.find("\"type\": \"fixture-faulty-throws\""), std::string::npos) << session;
+    EXPECT_NE(session.find("\"type\": \"achromatic\""), std::string::npos) << session;
+}

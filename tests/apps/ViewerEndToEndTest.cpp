@@ -8,8 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 namespace fs = std::filesystem;
 using namespace mvcl::test;
@@ -28,8 +30,9 @@ void writeScript(const fs::path &file, const std::string &text) {
 
 /// The viewer under a virtual X server, 1280×720 window (a 900×720 view beside the panels),
 /// fixed sampling so that an image does not depend on when edits arrived.
-CommandResult runViewer(const std::string &args) {
-    return runCommand("xvfb-run -a -s '-screen 0 1400x900x24' " + std::string(MVCL_VIEWER_EXE) +
+/// `environment`: VAR=value words for the viewer's environment (e.g. MVCL_PLUGIN_PATH).
+CommandResult runViewer(const std::string &args, const std::string &environment = "") {
+    return runCommand(environment + " xvfb-run -a -s '-screen 0 1400x900x24' " + std::string(MVCL_VIEWER_EXE) +
                       " --size 1280x720 --sampling fixed --spp 4 " + args);
 }
 
@@ -130,4 +133,61 @@ TEST(ViewerEndToEnd, KeyframesAddedFromTheViewPlayBackWhileTheViewIsRecorded) {
     // The animation plays for one second at least, recorded at 10 frames per second.
     EXPECT_GE(recorded, 10);
     EXPECT_TRUE(fs::exists(frames / "0000.png"));
+}
+
+TEST(ViewerEndToEnd, AFaultyPluginsLensIsDisabledReportedAndKeptInTheSession) {
+    ASSERT_EQ(runCommand("command -v xvfb-run").exitCode, 0) << "xvfb-run is missing (scripts/bootstrap.sh installs it)";
+    const fs::path dir = viewerDir();
+    const fs::path session = dir / "faulty-session.json";
+    fs::remove(session);
+    // fixture-faulty-nan: its contribution has a NaN colour map (tests/lens/fixtures/FixtureFaulty.cpp).
+    const std::string environment = "MVCL_PLUGIN_PATH=" + quoted(MVCL_FAULTY_PLUGIN_DIR);
+    const std::string reported = "disabled: lens 'fixture-faulty-nan': contribution: the colour map is not finite";
+    writeScript(dir / "faulty.txt", R"(wait-converged
+add-lens fixture-faulty-nan 0.5 0.5
+add-lens achromatic 0.4 0.4
+drag left 360 288 380 300 4
+expect-lenses 2
+wait-converged
+save-session )" + session.string() + R"(
+quit
+)");
+    const CommandResult build =
+        runViewer("builtin:cube-in-cube --script " + quoted((dir / "faulty.txt").string()), environment);
+    ASSERT_EQ(build.exitCode, 0) << build.output;
+    EXPECT_NE(build.output.find("mvcl-viewer: lens 0 "), std::string::npos) << build.output;
+    EXPECT_NE(build.output.find(reported), std::string::npos) << build.output;
+    std::ifstream in(session);
+    const std::string saved((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(saved.find("\"type\": \"fixture-faulty-nan\""), std::string::npos) << saved;
+    EXPECT_NE(saved.find("\"enabled\": false"), std::string::npos) << saved;
+
+    // Reopened, the lens is there again, disabled, and the user is told again why.
+    writeScript(dir / "faulty-reopen.txt", "wait-converged\nexpect-lenses 2\nquit\n");
+    const CommandResult reopen = runViewer("--session " + quoted(session.string()) + " --script " +
+                                           quoted((dir / "faulty-reopen.txt").string()), environment);
+    ASSERT_EQ(reopen.exitCode, 0) << reopen.output;
+    EXPECT_NE(reopen.output.find(reported), std::string::npos) << reopen.output;
+}
+
+TEST(ViewerEndToEnd, AtStartARecoveryCopyNewerThanItsSessionIsOffered) {
+    ASSERT_EQ(runCommand("command -v xvfb-run").exitCode, 0) << "xvfb-run is missing (scripts/bootstrap.sh installs it)";
+    const fs::path dir = viewerDir() / "recovery";
+    fs::create_directories(dir);
+    const fs::path session = dir / "work.json", recovery = dir / "work.recovery.json";
+    std::ofstream(session) << R"({"scene": "builtin:cube-in-cube", "lenses": []})";
+    std::ofstream(recovery) << R"({"scene": "builtin:cube-in-cube", "lenses": [{"type": "achromatic"}]})";
+    writeScript(dir / "quit.txt", "wait-converged\nquit\n");
+    const std::string args = "--session " + quoted(session.string()) + " --script " + quoted((dir / "quit.txt").string());
+    const std::string offer = "the last session was not saved; its recovery copy is " + recovery.string();
+
+    fs::last_write_time(recovery, fs::last_write_time(session) + std::chrono::seconds(10));
+    const CommandResult newer = runViewer(args);
+    ASSERT_EQ(newer.exitCode, 0) << newer.output;
+    EXPECT_NE(newer.output.find(offer), std::string::npos) << newer.output;
+
+    fs::last_write_time(recovery, fs::last_write_time(session) - std::chrono::seconds(10));
+    const CommandResult older = runViewer(args);
+    ASSERT_EQ(older.exitCode, 0) << older.output;
+    EXPECT_EQ(older.output.find("recovery copy is"), std::string::npos) << "saved since: nothing to offer\n" << older.output;
 }

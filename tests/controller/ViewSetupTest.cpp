@@ -117,5 +117,31 @@ TEST_F(ViewSetupTest, DescribeGivesTheEffectiveSessionInWorldUnits) {
     EXPECT_EQ(description.lenses.size(), 1);
 }
 
+TEST_F(ViewSetupTest, TheFilesMemoryBudgetRefusesAModelAndTheRequestsWins) {
+    const std::string engine = (fs::path(MVCL_TEST_DATA_DIR) / "models" / "2CylinderEngine" / "2CylinderEngine.glb").string();
+    ViewRequest request;
+    request.sessionFile = writeSession(R"({"scene": ")" + engine + R"(", "memoryBudgetMiB": 1})");
+    const ViewSetup setup = ViewSetup::prepare(request, *registry);
+    EXPECT_EQ(setup.loadOptions.memoryBudgetBytes, 1ull << 20);
+    const std::string error = errorOf([&] { loadScene(setup.source, setup.loadOptions); });
+    EXPECT_NE(error.find("more than the memory budget of 1 MiB"), std::string::npos) << error;
+    // Kept when the session is written again.
+    const Scene onion = loadScene("builtin:onion");
+    const LensStackDescription described = setup.describe(onion, Camera::framing(onion.bounds(), 40.f, 1.f));
+    EXPECT_EQ(described.memoryBudgetBytes, 1ull << 20);
+    EXPECT_NE(lensStackJson(described).find("\"memoryBudgetMiB\": 1"), std::string::npos) << lensStackJson(described);
+
+    request.loadOptions.memoryBudgetBytes = 1ull << 30; // --memory-budget 1024
+    const ViewSetup roomy = ViewSetup::prepare(request, *registry);
+    EXPECT_NO_THROW(loadScene(roomy.source, roomy.loadOptions));
+
+    const std::string bad = errorOf([&] {
+        ViewRequest broken;
+        broken.sessionFile = writeSession(R"({"scene": "builtin:onion", "memoryBudgetMiB": 0.5})");
+        ViewSetup::prepare(broken, *registry);
+    });
+    EXPECT_NE(bad.find("memoryBudgetMiB: expected a whole number of MiB ≥ 1, got 0.5"), std::string::npos) << bad;
+}
+
 } // namespace
 } // namespace mvcl::test

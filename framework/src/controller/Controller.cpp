@@ -114,6 +114,20 @@ void Controller::Private::writeRecovery() {
     }
 }
 
+void Controller::Private::reportLensFaults() {
+    if (!errorCallback) return;
+    std::map<const Lens *, std::string> current;
+    for (int i = 0; i < stack.size(); ++i) {
+        const Lens &faulty = *stack.lens(i);
+        std::string fault = faulty.fault();
+        if (fault.empty()) continue;
+        const auto known = reportedFaults.find(&faulty);
+        if (known == reportedFaults.end() || known->second != fault) errorCallback(Error(lensName(i), "disabled: " + fault));
+        current.emplace(&faulty, std::move(fault));
+    }
+    reportedFaults = std::move(current);
+}
+
 void Controller::Private::report(const Error &error) const {
     if (!errorCallback) throw error;
     errorCallback(error);
@@ -430,6 +444,7 @@ SessionState Controller::state() const { return d->captureState(); }
 
 void Controller::setErrorCallback(std::function<void(const Error &)> callback) {
     d->errorCallback = std::move(callback);
+    d->reportLensFaults(); // lenses of a session read before there was a callback
 }
 
 void Controller::setSceneChangedCallback(std::function<void()> callback) {

@@ -70,7 +70,7 @@ int Controller::addLens(std::string_view typeName, const glm::vec2 &center) {
     LensRegion region = lens->region();
     region.setCenter(center);
     lens->setRegion(region);
-    lens->commit();
+    lens->commitOrDisable(); // a faulty plugin's lens is added disabled, and reported
     d->edit(Private::StepKind::Other, [&] {
         d->stack.add(std::move(lens));
         d->selected = d->stack.size() - 1;

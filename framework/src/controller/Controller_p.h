@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -95,7 +96,13 @@ struct Controller::Private {
     void sendLenses() {
         placeLenses();
         session->setLensStack(stack);
+        reportLensFaults();
     }
+    /// Tells the error callback, once per lens and fault, about every lens of the stack that
+    /// its plugin's fault disabled (Lens::fault). Nothing without a callback: setErrorCallback
+    /// reports what is there by then.
+    void reportLensFaults();
+    std::map<const Lens *, std::string> reportedFaults;
     void sendBasePolicy() { session->setBasePolicy(basePolicy()); }
     RenderSettings sessionSettings() const;
     /// Ends an edit that started at `before`: one undo step if anything changed, then the

@@ -45,6 +45,8 @@ ViewSetup ViewSetup::prepare(const ViewRequest &request, const LensRegistry &reg
     for (const LayerRule &rule : setup.session.layerRules.rules()) setup.loadOptions.layerRules.add(rule);
     // The request's contact tolerance wins over the file's, as its rules do.
     if (!setup.loadOptions.layerContact.isEnabled()) setup.loadOptions.layerContact = setup.session.layerContact;
+    // And its memory budget.
+    if (setup.loadOptions.memoryBudgetBytes == 0) setup.loadOptions.memoryBudgetBytes = setup.session.memoryBudgetBytes;
     return setup;
 }
 
@@ -85,6 +87,7 @@ LensStackDescription ViewSetup::describe(const Scene &scene, const Camera &camer
     description.layerRules = loadOptions.layerRules;
     description.visibleLayers = visibleLayers;
     description.layerContact = loadOptions.layerContact;
+    description.memoryBudgetBytes = loadOptions.memoryBudgetBytes;
     description.lenses = lenses; // shares the lenses
     return description;
 }

@@ -127,8 +127,10 @@ std::shared_ptr<Lens> readLens(const Json &value, const LensRegistry &registry, 
             }
         }
     }
+    // A lens whose plugin fails is kept, disabled with its fault(), so that nothing the file
+    // says is lost when it is written again; only an invalid region is the file's error.
     try {
-        lens->commit();
+        lens->commitOrDisable();
     } catch (const Error &e) {
         where.fail(e.what());
     }
@@ -153,7 +155,7 @@ LayerContact readLayerContact(const Json &json, const JsonLocation &where) {
 LensStackDescription readDescription(const Json &document, const LensRegistry &registry,
                                      const JsonLocation &where) {
     static constexpr std::string_view kTopKeys[] = {"version", "scene", "camera", "layerRules", "visibleLayers",
-                                                    "layerContact", "lenses"};
+                                                    "layerContact", "memoryBudgetMiB", "lenses"};
     expectObject(document, where);
     rejectUnknownKeys(document, kTopKeys, where);
     if (document.contains("version")) {
@@ -200,6 +202,13 @@ LensStackDescription readDescription(const Json &document, const LensRegistry &r
     }
     if (document.contains("layerContact"))
         description.layerContact = readLayerContact(document["layerContact"], where.key("layerContact"));
+    if (document.contains("memoryBudgetMiB")) {
+        const Json &budget = document["memoryBudgetMiB"];
+        // Up to 2^40 MiB: the bytes must fit 64 bits.
+        if (!budget.is_number_integer() || budget.get<long long>() < 1 || budget.get<long long>() > (1ll << 40))
+            where.key("memoryBudgetMiB").fail("expected a whole number of MiB ≥ 1, got " + budget.dump());
+        description.memoryBudgetBytes = std::uint64_t(budget.get<long long>()) << 20;
+    }
     if (document.contains("lenses")) {
         const JsonLocation lensesWhere = where.key("lenses");
         const Json &lenses = document["lenses"];
@@ -288,6 +297,7 @@ Json descriptionJson(const LensStackDescription &description) {
     if (const LayerContact &contact = description.layerContact; contact.isEnabled())
         json["layerContact"] = {{contact.measure == LayerContact::Measure::SceneUnits ? "sceneUnits" : "relative",
                                  contact.distance}};
+    if (description.memoryBudgetBytes > 0) json["memoryBudgetMiB"] = std::max<std::uint64_t>(description.memoryBudgetBytes >> 20, 1);
     Json lenses = Json::array();
     for (const std::shared_ptr<Lens> &lens : description.lenses.lenses()) lenses.push_back(lensJson(*lens));
     json["lenses"] = std::move(lenses);
@@ -353,7 +363,7 @@ bool operator==(const LensStackDescription &a, const LensStackDescription &b) {
         return sameCommittedLens(*x, *y);
     };
     return a.scene == b.scene && a.moreScenes == b.moreScenes && a.camera == b.camera && a.visibleLayers == b.visibleLayers &&
-           a.layerContact == b.layerContact &&
+           a.layerContact == b.layerContact && a.memoryBudgetBytes == b.memoryBudgetBytes &&
            std::ranges::equal(a.layerRules.rules(), b.layerRules.rules(), sameRule) &&
            std::ranges::equal(a.lenses.lenses(), b.lenses.lenses(), sameLens);
 }

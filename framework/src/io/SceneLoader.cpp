@@ -16,6 +16,8 @@
 #include <limits>
 #include <string>
 
+#include <unistd.h>
+
 namespace mvcl {
 
 namespace {
@@ -76,6 +78,7 @@ Scene readSource(std::string_view source, const SceneLoadOptions &options) {
     if (format == detail::ModelFormat::Gltf) {
         GltfLoadOptions gltfOptions;
         gltfOptions.layerRules = options.layerRules;
+        gltfOptions.maxGeometryBytes = options.memoryBudgetBytes ? options.memoryBudgetBytes : defaultMemoryBudgetBytes();
         scene = loadGltf(path, gltfOptions);
     } else {
         MeshFileOptions meshOptions;
@@ -220,6 +223,12 @@ Scene finish(Scene scene, bool isModelFile, const SceneLoadOptions &options) {
 }
 
 } // namespace
+
+std::uint64_t defaultMemoryBudgetBytes() {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+    if (pages <= 0 || pageSize <= 0) return 4ull << 30; // unknown: a budget any machine mvcl runs on has
+    return std::uint64_t(pages) * std::uint64_t(pageSize) / 2;
+}
 
 Scene loadScene(std::string_view source, const SceneLoadOptions &options) {
     return finish(readSource(source, options), !source.starts_with(kBuiltinPrefix), options);

@@ -90,6 +90,25 @@ public:
         return result.restrictedTo(values.back().toRayTypeSet());
     }
 
+    /// Publishes the staged state with `contribution` as the next snapshot.
+    void publish(const LensContribution &contribution, std::vector<std::string> unread, std::string newFault) {
+        // "rays" is applied here, not by the plugin, so it never counts as unread.
+        std::erase(unread, std::string(kRaysProperty));
+        auto next = std::make_shared<LensSnapshot>();
+        next->enabled = stagedEnabled;
+        next->region = stagedRegion;
+        next->contribution = contribution;
+        next->idempotent = info.algebra.idempotent;
+
+        const std::lock_guard lock(committedMutex);
+        next->version = snapshot->version + 1;
+        snapshot = std::move(next);
+        committedValues = stagedValues;
+        committedContext = stagedContext;
+        unreadProperties = std::move(unread);
+        fault = std::move(newFault);
+    }
+
     // Staged state; edited by one thread at a time.
     bool stagedEnabled = true;
     LensRegion stagedRegion;
@@ -102,6 +121,7 @@ public:
     std::vector<PropertyValue> committedValues;
     LensContext committedContext;
     std::vector<std::string> unreadProperties;
+    std::string fault; ///< the last refused contribution's error, empty when sound
     // The last snapshotIn() that had to re-contribute: for committed version `inContextVersion`
     // in `inContext`.
     std::shared_ptr<const LensSnapshot> inContextSnapshot;
@@ -165,21 +185,29 @@ void Lens::commit() {
     std::vector<std::string> unread;
     const LensContribution contribution =
         d->contribution(*this, d->stagedValues, d->stagedRegion, d->stagedContext, &unread);
-    // "rays" is applied here, not by the plugin, so it never counts as unread.
-    std::erase(unread, std::string(kRaysProperty));
+    d->publish(contribution, std::move(unread), {});
+}
 
-    auto next = std::make_shared<LensSnapshot>();
-    next->enabled = d->stagedEnabled;
-    next->region = d->stagedRegion;
-    next->contribution = contribution;
-    next->idempotent = d->info.algebra.idempotent;
+void Lens::commitOrDisable() {
+    try {
+        d->stagedRegion.validate();
+    } catch (const Error &e) {
+        d->rethrowNamingLens(e);
+    }
+    std::vector<std::string> unread;
+    try {
+        const LensContribution contribution =
+            d->contribution(*this, d->stagedValues, d->stagedRegion, d->stagedContext, &unread);
+        d->publish(contribution, std::move(unread), {});
+    } catch (const Error &e) {
+        d->stagedEnabled = false;
+        d->publish(LensContribution{}, {}, e.what());
+    }
+}
 
+std::string Lens::fault() const {
     const std::lock_guard lock(d->committedMutex);
-    next->version = d->snapshot->version + 1;
-    d->snapshot = std::move(next);
-    d->committedValues = d->stagedValues;
-    d->committedContext = d->stagedContext;
-    d->unreadProperties = std::move(unread);
+    return d->fault;
 }
 
 std::shared_ptr<const LensSnapshot> Lens::snapshotIn(const LensContext &context) const {
@@ -191,10 +219,11 @@ std::shared_ptr<const LensSnapshot> Lens::snapshotIn(const LensContext &context)
     auto next = std::make_shared<LensSnapshot>(*d->snapshot);
     try {
         next->contribution = d->contribution(*this, d->committedValues, next->region, context, nullptr);
-    } catch (const Error &) {
+    } catch (const Error &e) {
         // It committed in its own context; in this one it cannot say what it wants: no effect.
         next->enabled = false;
         next->contribution = LensContribution{};
+        d->fault = e.what();
     }
     d->inContextSnapshot = std::move(next);
     d->inContextVersion = d->snapshot->version;

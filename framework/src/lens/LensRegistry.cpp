@@ -117,8 +117,10 @@ std::shared_ptr<Lens> LensRegistryPrivate::createLens(const Registration &regist
     if (lens->typeName() != type)
         throw Error(source, "the plugin registers lens type '" + type + "' but its lens calls itself '" +
                                 lens->typeName() + "'");
+    // A plugin whose contribution fails on its defaults still gives a lens, disabled, with its
+    // fault(): files that name it keep it, and apps say why it shows nothing.
     try {
-        lens->commit();
+        lens->commitOrDisable();
     } catch (const std::exception &e) {
         throw Error(source, "lens '" + type + "' does not commit on its defaults: " + e.what());
     }

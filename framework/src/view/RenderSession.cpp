@@ -170,7 +170,7 @@ ConvergenceStats RenderSession::convergence() const {
     std::lock_guard lock(d->statsMutex);
     ConvergenceStats c = d->convergence;
     if (c.isConverged) return c; // elapsed stops with the work
-    c.elapsedSeconds = std::chrono::duration<double>(Clock::now() - d->resetTime).count();
+    c.elapsedSeconds = std::chrono::duration<double>(Clock::now() - d->convergenceResetTime).count();
     return c;
 }
 

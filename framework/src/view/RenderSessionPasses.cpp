@@ -549,6 +549,7 @@ RenderPassStats RenderSession::Private::renderPass() {
         std::lock_guard lock(statsMutex);
         last = stats;
         convergence = reached;
+        convergenceResetTime = resetTime;
         ++passes;
     }
     passRunning = false;

@@ -134,6 +134,9 @@ struct RenderSession::Private {
     mutable std::mutex statsMutex;
     RenderPassStats last;
     ConvergenceStats convergence;
+    /// resetTime as of the last finished pass: convergence() measures the elapsed time from it,
+    /// since resetTime itself belongs to the thread that runs the passes.
+    Clock::time_point convergenceResetTime = Clock::now();
     uint64_t passes = 0;
 
     // --- Background thread. ---

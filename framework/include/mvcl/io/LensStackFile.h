@@ -28,6 +28,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -61,6 +62,9 @@ struct LensStackDescription {
     /// The scene's contact tolerance for touching layers ("layerContact": {"relative": f} or
     /// {"sceneUnits": d}); off when the file has none.
     LayerContact layerContact;
+    /// The memory budget of the scene's model ("memoryBudgetMiB": whole MiB ≥ 1; bytes here,
+    /// 0 = none given: SceneLoadOptions::memoryBudgetBytes's default).
+    std::uint64_t memoryBudgetBytes = 0;
     LensStack lenses; ///< every lens committed
 };
 

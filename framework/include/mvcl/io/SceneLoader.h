@@ -38,7 +38,14 @@ struct SceneLoadOptions {
     /// Scene::report.assumptions then records.
     std::optional<UpAxis> upAxis;
     std::optional<LengthUnit> unit;
+    /// A model whose geometry would need more memory than this (bytes; meshes and BVH, estimated
+    /// before loading: GltfLoadOptions::maxGeometryBytes) is refused with the estimate.
+    /// 0 = defaultMemoryBudgetBytes().
+    std::uint64_t memoryBudgetBytes = 0;
 };
+
+/// Half the machine's physical memory: what a model may take when nobody says otherwise.
+MVCL_EXPORT std::uint64_t defaultMemoryBudgetBytes();
 
 /// Throws mvcl::Error naming the source and the problem.
 MVCL_EXPORT Scene loadScene(std::string_view source, const SceneLoadOptions &options = {});

@@ -81,15 +81,28 @@ public:
 
     /// Validates the staged state, builds the contribution in the staged context, checks it
     /// (LensContribution::validate: finite numbers, valid clip volumes, ranges) and publishes a
-    /// new snapshot. On error throws mvcl::Error naming the lens and keeps the previous snapshot.
+    /// new snapshot. On error throws mvcl::Error naming the lens and keeps the previous snapshot:
+    /// an edit that cannot be committed is refused, and the lens goes on as it was.
     void commit();
+    /// commit() for a lens that must exist whatever its plugin does (a new lens, a lens read
+    /// from a file): when the plugin's contribution fails (contribute() throws, or returns
+    /// non-finite numbers, out-of-range values or a malformed map), the lens is disabled instead
+    /// (staged and committed, with the staged values and region kept, so that files keep them)
+    /// and fault() says why. Only an invalid region still throws.
+    void commitOrDisable();
+    /// Why the plugin's contribution was refused, naming the lens and the problem ("lens 'x':
+    /// contribute() failed: ..."), or empty. Set by commitOrDisable() and by snapshotIn() (a
+    /// contribution that fails in a session's context); cleared by the next commit whose
+    /// contribution is sound. Any thread.
+    std::string fault() const;
     /// The last committed state; never null.
     std::shared_ptr<const LensSnapshot> snapshot() const;
     /// The last committed state as it is in `context`: snapshot() itself when `context` agrees
     /// with the committed one in what this lens depends on (scene; view too if
     /// LensInfo::dependsOnView), else the committed values and region re-contributed in
     /// `context` (the last such result is kept, so equal contexts give the same pointer). Any
-    /// thread; never throws: a contribution that fails in `context` gives a disabled snapshot.
+    /// thread; never throws: a contribution that fails in `context` gives a disabled snapshot
+    /// and sets fault().
     std::shared_ptr<const LensSnapshot> snapshotIn(const LensContext &context) const;
     /// Committed property values in table order (for files and round trips).
     std::vector<PropertyValue> committedValues() const;

@@ -24,6 +24,10 @@ struct GltfLoadOptions {
     std::uint64_t maxTexturePixels = 1ull << 26;
     /// All decoded images of one file with their mip chains stay below this many bytes.
     std::uint64_t maxTextureBytes = 1ull << 30;
+    /// A file whose geometry would need more than this many bytes once loaded (its meshes, one
+    /// copy per instance, and the tracer's BVH over them; estimated from the accessors' counts)
+    /// is refused before any geometry is read, with the estimate in the error. 0 = no limit.
+    std::uint64_t maxGeometryBytes = 0;
 };
 
 /// Loads a glTF file. Meshes get their layer from `extras.layer` (node, then mesh), then from
