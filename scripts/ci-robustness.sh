@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The robustness checks of docs/robustness.md, in order, each timed:
 #   1. scripts/ci-sanitizers.sh      whole ctest suite under ASan+UBSan+LSan (clang -O1)
-#   2. scripts/ci-fuzz.sh            libFuzzer on the glTF loader, .gltf and .glb, $MVCL_FUZZ_SECONDS each
+#   2. scripts/ci-fuzz.sh            libFuzzer on the glTF loader (.gltf, .glb: $MVCL_FUZZ_SECONDS each),
+#                                    the OBJ, STL and PLY readers, session files and viewer scripts (half that each)
 #   3. scripts/ci-flag-invariance.sh robustness digest identical across compilers and flags
 #   4. scripts/ci-tsan.sh            the concurrent parts under ThreadSanitizer (clang -O1, an
 #                                    instrumented oneTBB), and a deliberate race reported
