@@ -191,12 +191,7 @@ Animation readAnimation(const Json &document, const LensStack &lenses, const Jso
     static constexpr std::string_view kTopKeys[] = {"version", "duration", "frameRate", "camera", "lenses"};
     expectObject(document, where);
     rejectUnknownKeys(document, kTopKeys, where);
-    if (document.contains("version")) {
-        const Json &version = document["version"];
-        if (!version.is_number_integer() || version.get<long long>() != kFileVersion)
-            where.key("version").fail("this build reads version " + std::to_string(kFileVersion) + ", got " +
-                                      version.dump());
-    }
+    expectVersion(document, kFileVersion, where);
     Animation animation;
     if (!document.contains("duration")) where.fail("missing \"duration\" (seconds)");
     const double duration = readReal(document["duration"], where.key("duration"));

@@ -73,6 +73,13 @@ const Json &expectObject(const Json &value, const JsonLocation &where) {
     return value;
 }
 
+void expectVersion(const Json &document, int version, const JsonLocation &where) {
+    if (!document.contains("version")) return;
+    const Json &value = document["version"];
+    if (!value.is_number_integer() || value.get<long long>() != version)
+        where.key("version").fail("this build reads version " + std::to_string(version) + ", got " + value.dump());
+}
+
 void rejectUnknownKeys(const Json &object, std::span<const std::string_view> known,
                        const JsonLocation &where) {
     for (const auto &[key, value] : object.items())

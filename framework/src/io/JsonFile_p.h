@@ -51,6 +51,8 @@ struct JsonLocation {
 };
 
 const Json &expectObject(const Json &value, const JsonLocation &where);
+/// The document's optional "version" must be `version`, the one this build reads and writes.
+void expectVersion(const Json &document, int version, const JsonLocation &where);
 void rejectUnknownKeys(const Json &object, std::span<const std::string_view> known, const JsonLocation &where);
 std::string readString(const Json &value, const JsonLocation &where);
 bool readBool(const Json &value, const JsonLocation &where);

@@ -158,12 +158,7 @@ LensStackDescription readDescription(const Json &document, const LensRegistry &r
                                                     "layerContact", "memoryBudgetMiB", "lenses"};
     expectObject(document, where);
     rejectUnknownKeys(document, kTopKeys, where);
-    if (document.contains("version")) {
-        const Json &version = document["version"];
-        if (!version.is_number_integer() || version.get<long long>() != kFileVersion)
-            where.key("version").fail("this build reads version " + std::to_string(kFileVersion) + ", got " +
-                                      version.dump());
-    }
+    expectVersion(document, kFileVersion, where);
 
     LensStackDescription description;
     if (document.contains("scene")) {

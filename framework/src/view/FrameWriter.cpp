@@ -86,16 +86,8 @@ namespace detail {
 
 const MvclVideoModule &loadVideoModule(const std::string &file, const std::vector<fs::path> &directories) {
     const std::string moduleFile = std::string(kFfmpegVideoModule) + ".so";
-    fs::path found;
     std::string searched;
-    for (const fs::path &directory : directories) {
-        std::error_code ec;
-        if (fs::is_regular_file(directory / moduleFile, ec)) {
-            found = fs::absolute(directory / moduleFile, ec);
-            break;
-        }
-        searched += (searched.empty() ? "" : ", ") + directory.string();
-    }
+    const fs::path found = findModuleFile(moduleFile, directories, searched);
     const std::string needs = "a video needs the FFmpeg module " + moduleFile;
     if (found.empty())
         throw Error(file, needs + ", which was not found (looked in " + (searched.empty() ? "no folder" : searched) +

@@ -253,20 +253,21 @@ std::vector<fs::path> imageModuleSearchPath() {
     return directories;
 }
 
+fs::path findModuleFile(const std::string &moduleFile, const std::vector<fs::path> &directories, std::string &searched) {
+    for (const fs::path &directory : directories) {
+        std::error_code ec;
+        if (fs::is_regular_file(directory / moduleFile, ec)) return fs::absolute(directory / moduleFile, ec);
+        searched += (searched.empty() ? "" : ", ") + directory.string();
+    }
+    return {};
+}
+
 const MvclImageModule &loadImageModule(const std::string &file, const std::vector<fs::path> &directories) {
     const std::string moduleFile = std::string(kOiioImageModule) + ".so";
     const std::string ext = fs::path(file).extension().string();
     const std::string format = ext.empty() ? "a file without an extension" : "the " + ext + " format";
-    fs::path found;
     std::string searched;
-    for (const fs::path &directory : directories) {
-        std::error_code ec;
-        if (fs::is_regular_file(directory / moduleFile, ec)) {
-            found = fs::absolute(directory / moduleFile, ec);
-            break;
-        }
-        searched += (searched.empty() ? "" : ", ") + directory.string();
-    }
+    const fs::path found = findModuleFile(moduleFile, directories, searched);
     if (found.empty())
         throw Error(file, format + " needs the OpenImageIO module " + kOiioImageModule + " (" + moduleFile +
                               "), which was not found (looked in " + (searched.empty() ? "no directory" : searched) +

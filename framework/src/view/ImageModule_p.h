@@ -19,6 +19,12 @@ inline constexpr const char *kOiioImageModule = "mvcl-imageio-oiio";
 /// libmvcl.so itself (for programs outside an mvcl build or install tree).
 std::vector<std::filesystem::path> imageModuleSearchPath();
 
+/// The first of `directories` that holds `moduleFile`, as an absolute path, or empty; `searched`
+/// gets the directories looked in, for the message that says it is missing. Shared with the
+/// video module (FrameWriter.cpp), which is looked for in the same places.
+std::filesystem::path findModuleFile(const std::string &moduleFile, const std::vector<std::filesystem::path> &directories,
+                                     std::string &searched);
+
 /// Loads the module from the first of `directories` that has it (never unloaded). Throws
 /// mvcl::Error naming `file` when there is none ("the .tif format needs the OpenImageIO module
 /// mvcl-imageio-oiio, ..."), or when it cannot be loaded or was built for another interface.
