@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Sets up a Debian 12 machine for mvcl and builds it: installs the Debian packages that are
 # missing (needs root or sudo), then configures and builds into build/ (or $MVCL_BUILD_DIR).
+#   scripts/bootstrap.sh                 everything (the apps, the tests, the benches)
+#   scripts/bootstrap.sh TARGET...       only those targets and what they need (the README's
+#                                        first command: mvcl-render, with the lens plugins)
 # Used by both README commands and by .ci/run. Safe to run again: it only does what is missing.
 set -euo pipefail
 
@@ -33,4 +36,6 @@ if ((${#missing[@]})); then
 fi
 
 cmake -S "$repo" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" >/dev/null
-cmake --build "$build_dir" -- -j"$(nproc)"
+targets=()
+for target in "$@"; do targets+=(--target "$target"); done
+cmake --build "$build_dir" "${targets[@]}" -- -j"$(nproc)"
