@@ -24,7 +24,7 @@ constexpr const char *kUsage = R"(usage: mvcl-render [options] <model.gltf | .gl
 Scenes:  builtin:cube-in-cube (the default scene of the paper), builtin:onion)";
 
 constexpr const char *kExitCodes = R"(Exit codes: 0 ok, 1 bad input file (scene, layer rules, lens stack, animation), 2 bad arguments
-(including --lens, --sweep), 3 image, frames, video, --save-lenses or --convergence-log file not
+(including --lens, --sweep), 3 image, frames, video, --save-lenses, --save-animation or --convergence-log file not
 written, 4 internal error, 130 interrupted (the frames written so far are complete).)";
 
 /// "A-B" (inclusive) or "A": frame numbers from 0.
@@ -172,6 +172,10 @@ std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::stri
            "render only frames A to B of the animation (numbered from 0, as the\n"
            "files are), e.g. to split a long one across machines")
         ->type_name("A-B")->check(validatorFrom([](const std::string &text) { parseFrameRange(text); }, ""));
+    app->add_option("--save-animation", cl.saveAnimationFile,
+                    "write the animation (of --animate, --turntable, --sweep) as an animation file,\n"
+                    "for mvcl-viewer's Play and Record or for editing by hand")
+        ->type_name("FILE");
     app->add_flag_callback("--no-progress", [&] { cl.progress = false; }, "no progress bar on stderr");
     app->add_flag("--version", cl.version, "version");
     return app;
@@ -209,7 +213,7 @@ RenderCommandLine parseRenderCommandLine(const std::vector<std::string> &args) {
     if (isAnimation(cl) && !cl.convergenceLogFile.empty())
         usageError("--convergence-log logs the passes of one image, not of an animation's frames");
     if (!isAnimation(cl))
-        for (const char *option : {"--frames", "--frame-count", "--frame-rate"})
+        for (const char *option : {"--frames", "--frame-count", "--frame-rate", "--save-animation"})
             if (app->count(option)) usageError(std::string(option) + " needs --animate, --turntable or --sweep");
     return cl;
 }

@@ -62,6 +62,7 @@ struct RenderCommandLine {
     std::string animationFile;       ///< --animate: animation JSON over the session's lenses
     std::optional<int> turntableFrames; ///< --turntable N: one turn in N frames
     std::vector<std::string> sweeps; ///< --sweep 'LENS.PROPERTY=FROM:TO', repeatable
+    std::string saveAnimationFile;   ///< --save-animation: the animation as a file (the viewer plays it)
     int frameCount = 30;             ///< --frame-count: frames of --sweep without --turntable
     std::optional<double> frameRate; ///< --frame-rate: frames per second (the file's, else 30)
     std::optional<std::pair<int, int>> frameRange; ///< --frames A-B, inclusive

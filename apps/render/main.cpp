@@ -8,6 +8,7 @@
 #include <mvcl/controller/ViewSetup.h>
 #include <mvcl/core/Error.h>
 #include <mvcl/core/WorkerPool.h>
+#include <mvcl/io/AnimationFile.h>
 #include <mvcl/io/LensStackFile.h>
 #include <mvcl/io/SceneLoader.h>
 #include <mvcl/lens/LensRegistry.h>
@@ -310,13 +311,15 @@ int run(const RenderCommandLine &cl) {
     const Tracer tracer(scene);
     const TracerBuildStats &build = tracer.buildStats();
     const Camera camera = setup.camera(scene, request, float(cl.width) / float(cl.height));
-    if (!cl.saveLensesFile.empty()) {
-        try {
-            writeLensStackFile(cl.saveLensesFile, setup.describe(scene, camera));
-        } catch (const Error &e) {
-            std::fprintf(stderr, "mvcl-render: %s\n", e.what());
-            return kExitOutput;
+    try {
+        if (!cl.saveLensesFile.empty()) writeLensStackFile(cl.saveLensesFile, setup.describe(scene, camera));
+        if (animation && !cl.saveAnimationFile.empty()) {
+            writeAnimationFile(cl.saveAnimationFile, *animation, lenses);
+            std::printf("saved      %s (the animation)\n", cl.saveAnimationFile.c_str());
         }
+    } catch (const Error &e) {
+        std::fprintf(stderr, "mvcl-render: %s\n", e.what());
+        return kExitOutput;
     }
 
     RenderSession session(tracer);

@@ -87,6 +87,9 @@ private:
     void drawAnimationPanel();
     /// Adds the camera and the selected lens at `seconds` to the animation file (made if missing).
     void addKeyframe(const std::string &file, double seconds);
+    /// mvcl-render's --turntable and --sweep as a file: one turn in `turntableFrames` frames
+    /// (none if 0) and the sweep `sweepSpec` (LENS.PROPERTY=FROM:TO; none if empty).
+    void writeShortcutAnimation(const std::string &file, int turntableFrames, const std::string &sweepSpec);
     void startPlaying(const std::string &file);
     /// Shows the animation's time on the view (lenses and camera to the render session, no edit).
     void updatePlayback();
@@ -145,6 +148,8 @@ private:
     // Animation: keyframes into a file, playback on the view, recording of what the view shows.
     std::string m_animationFile = "animation.json";
     float m_keyframeSeconds = 0.f;
+    int m_turntableFrames = 60;
+    std::string m_sweepSpec;
     std::optional<AnimationPlayer> m_player; ///< while playing
     Clock::time_point m_playStart;
     int m_playScriptLine = -1; ///< the script's play command that started the playback

@@ -56,6 +56,14 @@ void Viewer::drawAnimationPanel() {
         ImGui::SameLine();
         if (ImGui::Button("Stop")) stopPlaying();
     }
+    // The command line's shortcuts, written into the file for Play and Record.
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.35f);
+    ImGui::InputInt("turntable frames", &m_turntableFrames);
+    m_turntableFrames = std::clamp(m_turntableFrames, 0, 1 << 20);
+    inputText("sweep", m_sweepSpec);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("LENS.PROPERTY=FROM:TO, e.g. reveal.distance=0:4 (a label or an index)");
+    if (ImGui::Button("Write turntable / sweep"))
+        attempt([&] { writeShortcutAnimation(m_animationFile, m_turntableFrames, m_sweepSpec); });
     ImGui::Separator();
     inputText("record to", m_recordTarget);
     ImGui::DragFloat("frames/s", &m_recordFrameRate, 1.f, 1.f, 120.f, "%.0f");
@@ -80,6 +88,22 @@ void Viewer::addKeyframe(const std::string &file, double seconds) {
     writeAnimationFile(file, animation, lenses);
     report("keyframe at " + std::to_string(seconds) + " s added to " + file +
            (selected >= 0 ? " (camera and lens " + std::to_string(selected) + ")" : " (camera; select a lens to key it)"));
+}
+
+void Viewer::writeShortcutAnimation(const std::string &file, int turntableFrames, const std::string &sweepSpec) {
+    const LensStack &lenses = m_controller->lensStack();
+    constexpr double kFrameRate = 30.0;
+    Animation animation;
+    if (turntableFrames > 0) {
+        animation = Animation::turntable(turntableFrames, kFrameRate);
+    } else {
+        if (sweepSpec.empty()) throw Error("animation", "give a number of turntable frames, a sweep, or both");
+        animation.setFrameRate(kFrameRate);
+        animation.setDuration(1.0);
+    }
+    if (!sweepSpec.empty()) addSweepSpec(animation, sweepSpec, lenses);
+    writeAnimationFile(file, animation, lenses);
+    report("wrote " + file + ": " + std::to_string(animation.frameCount()) + " frames; Play or Record it");
 }
 
 void Viewer::startPlaying(const std::string &file) {

@@ -27,7 +27,7 @@ const std::map<std::string, Arity> &commandTable() {
         {"save-session", {1, 1}},  {"load-session", {1, 1}},    {"open", {1, 32}},
         {"expect-lenses", {1, 1}}, {"bench-begin", {1, 1}},     {"bench-end", {0, 0}},
         {"add-keyframe", {2, 2}},  {"play", {1, 1}},            {"record", {2, 2}},
-        {"stop-recording", {0, 0}}, {"quit", {0, 1}},
+        {"stop-recording", {0, 0}}, {"write-turntable", {2, 3}}, {"quit", {0, 1}},
     };
     return table;
 }
@@ -115,6 +115,8 @@ save-session FILE | load-session FILE | open MODEL
 expect-lenses N               fail (exit 1) unless the stack holds N lenses
 bench-begin NAME | bench-end  UI frame times between them (median, 95th percentile, worst) on stdout
 add-keyframe FILE SECONDS     the camera and the selected lens into animation FILE at SECONDS
+write-turntable FILE N [SWEEP] animation FILE: one turn in N frames (0: none), and the sweep
+                              LENS.PROPERTY=FROM:TO if given (the panel's Write turntable / sweep)
 play FILE                     preview animation FILE on the view (input waits until it ends)
 record TARGET FPS             record the view to frames/%04d.png or a video at FPS frames per second
 stop-recording                finish the recording

@@ -164,6 +164,8 @@ bool Viewer::runCommand(const ScriptCommand &c) {
         m_benchName.clear();
     } else if (name == "add-keyframe") {
         addKeyframe(c.word(0), c.number(1));
+    } else if (name == "write-turntable") {
+        writeShortcutAnimation(c.word(0), c.integer(1), c.args.size() > 2 ? c.word(2) : std::string());
     } else if (name == "play") {
         // Starts once, then holds the script until the animation has played.
         if (m_playScriptLine != c.line) {

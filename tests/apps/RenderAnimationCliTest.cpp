@@ -156,6 +156,29 @@ TEST(RenderAnimationCli, AnAnimationFileMovesTheCameraAndTheLenses) {
     EXPECT_GT(compareImages(readImage(dir / "f00.png"), readImage(dir / "f02.png"), 8).differingFraction, 0.1);
 }
 
+// The shortcuts write the file for you: --save-animation keeps what --turntable and --sweep made,
+// and rendering that file gives the same frames.
+TEST(RenderAnimationCli, ShortcutsSaveTheirAnimationAsAFileThatRendersTheSameFrames) {
+    const fs::path dir = scratch("save");
+    const std::string lenses = "--lenses " + quoted(defaultLenses().string()) + kSmall;
+    const CommandResult r = runRender(lenses + " --turntable 4 --sweep reveal.distance=0:6 --save-animation " +
+                                      quoted((dir / "turn.json").string()) + " -o " + quoted((dir / "a%d.png").string()));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("saved      " + (dir / "turn.json").string()), std::string::npos) << r.output;
+    const LensStackDescription stack = readLensStackFile(defaultLenses(), registry());
+    const Animation saved = readAnimationFile(dir / "turn.json", stack.lenses);
+    EXPECT_EQ(saved.frameCount(), 4);
+    const CommandResult again = runRender(lenses + " --animate " + quoted((dir / "turn.json").string()) + " -o " +
+                                          quoted((dir / "b%d.png").string()));
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    for (int i = 0; i < 4; ++i) {
+        const std::string name = std::to_string(i) + ".png";
+        EXPECT_TRUE(samePixels(readImage(dir / ("a" + name)), readImage(dir / ("b" + name)))) << name;
+    }
+    const CommandResult alone = runRender(lenses + " --save-animation " + quoted((dir / "none.json").string()));
+    EXPECT_EQ(alone.exitCode, 2) << alone.output;
+}
+
 #ifdef MVCL_TEST_FFMPEG_MODULE
 TEST(RenderAnimationCli, WritesAVideo) {
     const fs::path dir = scratch("video");

@@ -135,6 +135,30 @@ TEST(ViewerEndToEnd, KeyframesAddedFromTheViewPlayBackWhileTheViewIsRecorded) {
     EXPECT_TRUE(fs::exists(frames / "0000.png"));
 }
 
+// The command line's turntable and sweep, written from the viewer's Animation panel (its script
+// command), play back while the view is recorded.
+TEST(ViewerEndToEnd, ATurntableWrittenInTheViewerPlaysWhileTheViewIsRecorded) {
+    ASSERT_EQ(runCommand("command -v xvfb-run").exitCode, 0) << "xvfb-run is missing (scripts/bootstrap.sh installs it)";
+    const fs::path dir = viewerDir() / "turntable";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path animation = dir / "turn.json", frames = dir / "rec";
+    writeScript(dir / "turn.txt", "wait-converged\nadd-lens layer 0.5 0.5\nwrite-turntable " + animation.string() +
+                                      " 15 0.distance=0:0.1\nrecord " + (frames / "%04d.png").string() +
+                                      " 10\nplay " + animation.string() + "\nstop-recording\nquit\n");
+    const CommandResult run = runViewer("builtin:cube-in-cube --script " + quoted((dir / "turn.txt").string()));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(run.output.find("15 frames; Play or Record it"), std::string::npos) << run.output;
+    std::ifstream file(animation);
+    const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("\"orbit\""), std::string::npos) << text;
+    EXPECT_NE(text.find("\"distance\""), std::string::npos) << text;
+    int recorded = 0;
+    for (const auto &entry : fs::directory_iterator(frames)) recorded += entry.path().extension() == ".png";
+    // Half a second of turntable (15 frames at 30 fps), recorded at 10 frames per second.
+    EXPECT_GE(recorded, 4);
+}
+
 TEST(ViewerEndToEnd, AFaultyPluginsLensIsDisabledReportedAndKeptInTheSession) {
     ASSERT_EQ(runCommand("command -v xvfb-run").exitCode, 0) << "xvfb-run is missing (scripts/bootstrap.sh installs it)";
     const fs::path dir = viewerDir();
