@@ -157,7 +157,7 @@ LayerInferenceResult infer(Scene &scene, const Tracer *given, const LayerInferen
         assigned[0] = firstLayer;
         confidence[0] = firstLayer == kMaxLayers - 1 ? 0.f : 1.f;
     } else {
-        // The tracer reads the scene; layers are written back only after it is gone.
+        // The tracer reads the scene; layers are written back only after its last query.
         std::optional<Tracer> own;
         if (!given) own.emplace(scene);
         const Tracer &tracer = given ? *given : *own;
