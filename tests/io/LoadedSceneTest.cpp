@@ -6,12 +6,11 @@
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/Tracer.h>
 
+#include "../tracer/TracerTestUtil.h"
+
 #include <gtest/gtest.h>
 
-#include <glm/geometric.hpp>
-
 #include <filesystem>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -35,30 +34,6 @@ void expectSameLayers(const Scene &a, const Scene &b) {
     }
 }
 
-/// Random rays through the scene's bounds, each under a random layer mask: the same answers.
-void expectSameAnswers(const Tracer &a, const Tracer &b, const Scene &scene) {
-    const Bounds3f bounds = scene.bounds();
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<float> unit(0.f, 1.f);
-    const auto inside = [&] { return glm::mix(bounds.min, bounds.max, glm::vec3(unit(rng), unit(rng), unit(rng))); };
-    int hits = 0;
-    for (int i = 0; i < 2000; ++i) {
-        const glm::vec3 origin = bounds.min - (bounds.max - bounds.min);
-        const Ray ray{origin, glm::normalize(inside() - origin)};
-        RayQuery query;
-        query.layerMask = i % 3 == 0 ? ~0u : (1u << (i % 4)) | (1u << (i % 3));
-        Hit ha, hb;
-        const bool fa = a.closestHit(ray, query, ha), fb = b.closestHit(ray, query, hb);
-        ASSERT_EQ(fa, fb);
-        if (!fa) continue;
-        ++hits;
-        EXPECT_EQ(ha.t, hb.t);
-        EXPECT_EQ(ha.layer, hb.layer);
-        EXPECT_EQ(ha.geometry, hb.geometry);
-        EXPECT_EQ(ha.primitive, hb.primitive);
-    }
-    EXPECT_GT(hits, 200);
-}
 
 } // namespace
 
@@ -74,7 +49,7 @@ TEST(LoadedScene, InfersTheLayersLoadSceneInfersWithOneBvh) {
     EXPECT_GT(loaded.readMilliseconds, 0.0);
     EXPECT_EQ(&loaded.tracer->scene(), loaded.scene.get());
     const Tracer fresh(*loaded.scene);
-    expectSameAnswers(*loaded.tracer, fresh, *loaded.scene);
+    test::expectSameClosestHits(*loaded.tracer, fresh);
 }
 
 TEST(LoadedScene, BuiltinScenesAndRulesKeepTheirLayers) {
@@ -105,7 +80,7 @@ TEST(LoadedScene, ByCallerLeavesTheInferenceToFinishLayers) {
     expectSameLayers(inferred, loadScene(sources));
     for (const TriangleMesh &m : scene.meshes) EXPECT_EQ(m.layerSource, LayerSource::Unassigned);
     const Tracer moved(inferred, first);
-    expectSameAnswers(moved, Tracer(inferred), inferred);
+    test::expectSameClosestHits(moved, Tracer(inferred));
     // Nothing left to infer: nothing moves.
     EXPECT_FALSE(finishLayers(inferred, moved, options));
 }

@@ -7,14 +7,13 @@
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/Tracer.h>
 
-#include <gtest/gtest.h>
+#include "../tracer/TracerTestUtil.h"
 
-#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <string>
 #include <thread>
 #include <vector>
@@ -38,27 +37,6 @@ std::vector<SceneLoadJob::Result> allResults(SceneLoadJob &job) {
     return results;
 }
 
-void expectSameAnswers(const Tracer &a, const Tracer &b) {
-    const Bounds3f bounds = a.scene().bounds();
-    std::mt19937 rng(9);
-    std::uniform_real_distribution<float> unit(0.f, 1.f);
-    int hits = 0;
-    for (int i = 0; i < 1000; ++i) {
-        const glm::vec3 origin = bounds.min - (bounds.max - bounds.min);
-        const glm::vec3 target = glm::mix(bounds.min, bounds.max, glm::vec3(unit(rng), unit(rng), unit(rng)));
-        RayQuery query;
-        query.layerMask = i % 2 ? ~0u : 0b10u;
-        Hit ha, hb;
-        const bool fa = a.closestHit({origin, glm::normalize(target - origin)}, query, ha);
-        ASSERT_EQ(fa, b.closestHit({origin, glm::normalize(target - origin)}, query, hb));
-        if (!fa) continue;
-        ++hits;
-        EXPECT_EQ(ha.t, hb.t);
-        EXPECT_EQ(ha.geometry, hb.geometry);
-        EXPECT_EQ(ha.layer, hb.layer);
-    }
-    EXPECT_GT(hits, 100);
-}
 
 } // namespace
 
@@ -86,10 +64,10 @@ TEST(SceneLoadJob, HandsOutTheSceneAsReadThenTheInferredOne) {
     for (std::size_t i = 0; i < alone.meshes.size(); ++i) EXPECT_EQ(last->scene->meshes[i].layer, alone.meshes[i].layer);
     EXPECT_EQ(last->scene->layers.count(), alone.layers.count());
     EXPECT_EQ(&last->tracer->scene(), last->scene.get());
-    expectSameAnswers(*last->tracer, Tracer(*last->scene));
+    test::expectSameClosestHits(*last->tracer, Tracer(*last->scene));
     // The first result is untouched by the inference that ran beside it.
     for (const TriangleMesh &m : first->scene->meshes) EXPECT_EQ(m.layerSource, LayerSource::Unassigned);
-    expectSameAnswers(*first->tracer, Tracer(*first->scene));
+    test::expectSameClosestHits(*first->tracer, Tracer(*first->scene));
 }
 
 TEST(SceneLoadJob, NothingToInferGivesOneFinalResult) {
