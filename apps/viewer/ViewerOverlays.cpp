@@ -2,6 +2,7 @@
 // one brighter, with its handles), the help overlay and the message bar.
 
 #include "Viewer.h"
+#include "ViewerGizmos.h"
 
 #include <mvcl/lens/LensStack.h>
 
@@ -96,6 +97,7 @@ void Viewer::drawLensOverlays() {
             draw->AddRectFilled(ImVec2(h.x - r, h.y - r), ImVec2(h.x + r, h.y + r), color);
         }
     }
+    drawGizmos(draw, *m_controller, glm::vec2(0.f), 1.f / m_framebufferScale, m_contentScale);
 }
 
 void Viewer::drawHelpOverlay() {

@@ -3,6 +3,7 @@
 // UI frames. One pointer event per frame, so a scripted drag renders like a real one.
 
 #include "Viewer.h"
+#include "ViewerGizmos.h"
 
 #include <mvcl/core/Error.h>
 #include <mvcl/view/RenderSession.h>
@@ -106,7 +107,7 @@ bool Viewer::runCommand(const ScriptCommand &c) {
             {"1", Key::Digit1}, {"2", Key::Digit2}, {"3", Key::Digit3}, {"4", Key::Digit4}, {"5", Key::Digit5},
             {"6", Key::Digit6}, {"F", Key::F}, {"E", Key::E}, {"D", Key::D}, {"Z", Key::Z}, {"Y", Key::Y},
             {"Home", Key::Home}, {"PageUp", Key::PageUp}, {"PageDown", Key::PageDown}, {"Delete", Key::Delete},
-            {"Backspace", Key::Backspace}, {"Escape", Key::Escape},
+            {"Backspace", Key::Backspace}, {"Escape", Key::Escape}, {"B", Key::B}, {"P", Key::P},
         };
         const std::string &key = c.word(0);
         if (key == "F1") m_showHelp = !m_showHelp;
@@ -177,6 +178,8 @@ bool Viewer::runCommand(const ScriptCommand &c) {
         startRecording(c.word(0), c.number(1));
     } else if (name == "stop-recording") {
         stopRecording();
+    } else if (runGizmoCommand(*m_controller, c, m_pointer)) { // gizmo-drag, fit-lens, follow-pointer
+        m_waitFrames = 1;
     } else if (name == "quit") {
         m_exitCode = c.args.empty() ? 0 : c.integer(0);
         m_quit = true;
