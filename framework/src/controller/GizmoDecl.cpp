@@ -119,7 +119,7 @@ GizmoShape GizmoShape::read(const GizmoDecl &decl, const PropertyValues &values,
         [[fallthrough]];
     case GizmoDecl::Kind::Plane:
     case GizmoDecl::Kind::Point:
-        shape.center = glm::dvec3(context.scenePoint(values.point3(decl.position), shape.space));
+        shape.center = context.scenePointInDouble(values.point3(decl.position), shape.space);
         break;
     case GizmoDecl::Kind::Arrow: break;
     }

@@ -55,12 +55,18 @@ double largestSide(const Bounds3f &bounds) {
 } // namespace
 
 glm::vec3 LensContext::scenePoint(const glm::dvec3 &point, PropertySpace space) const {
+    // View space keeps its float maths (images made before must not change).
+    if (space == PropertySpace::View) return camera.eye + sceneFromViewRotation() * glm::vec3(point);
+    return glm::vec3(scenePointInDouble(point, space));
+}
+
+glm::dvec3 LensContext::scenePointInDouble(const glm::dvec3 &point, PropertySpace space) const {
     switch (space) {
-    case PropertySpace::World: return sceneFromWorldPoint(point);
-    case PropertySpace::Bounds: return glm::vec3(boundsLower(sceneBounds) + point * boundsExtent(sceneBounds));
+    case PropertySpace::World: return point - worldOrigin;
+    case PropertySpace::Bounds: return boundsLower(sceneBounds) + point * boundsExtent(sceneBounds);
     case PropertySpace::View: break;
     }
-    return camera.eye + sceneFromViewRotation() * glm::vec3(point);
+    return glm::dvec3(scenePoint(point, space));
 }
 
 glm::vec3 LensContext::sceneVector(const glm::dvec3 &vector, PropertySpace space) const {
@@ -112,9 +118,14 @@ Box3d LensContext::propertyBox(const glm::dvec3 &sceneMin, const glm::dvec3 &sce
 
 LensContext::OrientedBox LensContext::sceneOrientedBox(const Box3d &box, const glm::dmat4 &rotation,
                                                        PropertySpace space) const {
-    const Bounds3f aligned = sceneBox(box, space);
     OrientedBox oriented;
-    const glm::dvec3 lo(aligned.min), hi(aligned.max);
+    // World and bounds space keep the axes' directions, so the corners map onto corners (in
+    // double: the values go back into properties); view space turns the box.
+    glm::dvec3 lo = scenePointInDouble(box.min, space), hi = scenePointInDouble(box.max, space);
+    if (space == PropertySpace::View) {
+        const Bounds3f aligned = sceneBox(box, space);
+        lo = glm::dvec3(aligned.min), hi = glm::dvec3(aligned.max);
+    }
     oriented.center = 0.5 * (lo + hi);
     oriented.halfExtent = 0.5 * (hi - lo);
     // Gram-Schmidt on the linear part's columns: the nearest rotation for the small shears that

@@ -69,6 +69,9 @@ struct MVCL_EXPORT LensContext {
     /// plane normal (see above), the same as sceneNormal().
     glm::vec3 scenePoint(const glm::dvec3 &point, PropertySpace space) const;
     glm::vec3 sceneVector(const glm::dvec3 &vector, PropertySpace space) const;
+    /// scenePoint() without rounding to float (world and bounds space), for editors whose
+    /// values go back into properties.
+    glm::dvec3 scenePointInDouble(const glm::dvec3 &point, PropertySpace space) const;
     /// A plane's normal given in `space`, in scene space (not normalised).
     glm::vec3 sceneNormal(const glm::dvec3 &normal, PropertySpace space) const { return sceneVector(normal, space); }
     /// A length (a radius) given in `space`, in scene units.
