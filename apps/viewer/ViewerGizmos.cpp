@@ -24,14 +24,6 @@ ImU32 gizmoColor(int axis, GizmoDrawing::State state) {
     }
 }
 
-KeyModifier modifiersOf(const ScriptCommand &c) {
-    KeyModifier m = KeyModifier::None;
-    if (c.hasWord("shift")) m = m | KeyModifier::Shift;
-    if (c.hasWord("ctrl")) m = m | KeyModifier::Control;
-    if (c.hasWord("alt")) m = m | KeyModifier::Alt;
-    return m;
-}
-
 } // namespace
 
 void drawGizmos(ImDrawList *draw, const Controller &controller, const glm::vec2 &origin,
@@ -59,7 +51,7 @@ bool runGizmoCommand(Controller &controller, const ScriptCommand &c, const glm::
     };
     try {
         if (c.name == "gizmo-drag") {
-            controller.dragGizmoHandle(c.integer(0), c.word(1), {float(c.number(2)), float(c.number(3))}, modifiersOf(c));
+            controller.dragGizmoHandle(c.integer(0), c.word(1), {float(c.number(2)), float(c.number(3))}, c.modifiers());
         } else if (c.name == "fit-lens") {
             const std::string &what = c.word(1);
             if (what == "object") controller.fitLens(c.integer(0), LensFit::Object, 0, pointer);

@@ -66,6 +66,14 @@ bool ScriptCommand::hasWord(const std::string &w) const {
     return false;
 }
 
+KeyModifier ScriptCommand::modifiers() const {
+    KeyModifier m = KeyModifier::None;
+    if (hasWord("shift")) m = m | KeyModifier::Shift;
+    if (hasWord("ctrl")) m = m | KeyModifier::Control;
+    if (hasWord("alt")) m = m | KeyModifier::Alt;
+    return m;
+}
+
 ViewerScript ViewerScript::load(const std::filesystem::path &file) {
     std::ifstream in(file);
     if (!in) throw Error(file.string(), "cannot be read");

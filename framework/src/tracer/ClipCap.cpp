@@ -125,6 +125,24 @@ std::optional<ClipCap> clipCapBefore(const Ray &ray, const RayQuery &query, floa
     return ClipCap{float(runStart), glm::vec3(startNormal / length), startStyle, startLayers};
 }
 
+std::optional<ClipCap> nearestClipCap(const Ray &ray, const RayQuery &query, float hitT, uint32_t hitLayer) {
+    std::optional<ClipCap> nearest = clipCapBefore(ray, query, hitT, hitLayer);
+    // Volumes that act on the hit's layer were counted; those that spare it cut other layers,
+    // whose runs (one layer of each mask stands for it) may begin on a cap in front of the hit.
+    uint32_t triedMasks[kMaxClipVolumes];
+    int tried = 0;
+    for (const ClipVolume &clip : query.clips()) {
+        const uint32_t mask = clip.layerMask();
+        if (clip.capStyle() == ClipVolume::CapStyle::None || mask == 0 || clip.appliesTo(hitLayer) ||
+            std::find(triedMasks, triedMasks + tried, mask) != triedMasks + tried)
+            continue;
+        triedMasks[tried++] = mask;
+        const std::optional<ClipCap> cap = clipCapBefore(ray, query, hitT, uint32_t(std::countr_zero(mask)));
+        if (cap && (!nearest || cap->t < nearest->t)) nearest = cap;
+    }
+    return nearest;
+}
+
 std::optional<ClipCap> firstCappedRunStart(const Ray &ray, const RayQuery &query) {
     const glm::dvec3 o(ray.origin), d(ray.direction);
     // Runs are per layer once volumes spare layers; those of the first capped volume's lowest

@@ -26,6 +26,12 @@ struct ClipCap {
 /// (the hit's) count: a spared layer is neither cut nor capped.
 std::optional<ClipCap> clipCapBefore(const Ray &ray, const RayQuery &query, float hitT, uint32_t layer);
 
+/// The cap a hit on `hitLayer` at `hitT` may lie behind: clipCapBefore for the hit's layer and
+/// for the layers of the capped volumes that spare it (a spared solid inside a cut one is hidden
+/// by the cut one's cap), the nearest of them. Whose solid it caps is for the caller to check
+/// (ClipCap::layers).
+std::optional<ClipCap> nearestClipCap(const Ray &ray, const RayQuery &query, float hitT, uint32_t hitLayer);
+
 /// The first run of accepted points after query.tMin that begins on the surface of a capped
 /// clip volume: where a ray that meets no accepted surface at all may still enter a solid's
 /// section (a slab between two planes through a solid). Whether a solid is there is for the

@@ -205,7 +205,7 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
     if (mayCap) {
         // The run of accepted points that holds the hit, or (no hit at all: a slab through a
         // solid) the first run, begins on a capped surface: is that point inside a solid?
-        cap = found ? detail::clipCapBefore(ray, query, hit.t, hit.layer) : detail::firstCappedRunStart(ray, query);
+        cap = found ? detail::nearestClipCap(ray, query, hit.t, hit.layer) : detail::firstCappedRunStart(ray, query);
         Hit solid;
         // Between the run's start and the accepted hit every point is accepted, so that hit is
         // the first surface beyond the start: the walk begins with it. Only a solid of a layer
