@@ -146,12 +146,18 @@ void Viewer::drawLensPanel() {
     drawFitButtons(index);
 
     // The declared properties: one generated control each, no per-lens code.
+    // Properties not in use (clip's sphere while volume=box) are dimmed, still editable.
     const LayerTable &layers = m_controller->scene().layers;
+    const std::vector<PropertyValue> committed = lens.committedValues();
+    const PropertyValues read(lens.properties(), committed);
     for (const PropertyDecl &decl : lens.properties()) {
         PropertyValue value = lens.property(decl.name);
         ImGui::PushID(decl.name.c_str());
+        const bool used = read.isUsed(decl.name);
+        if (!used) ImGui::PushStyleVar(ImGuiStyleVar_Alpha, 0.5f * ImGui::GetStyle().Alpha);
         if (editProperty(decl, value, layers))
             edit([&] { m_controller->setLensProperty(index, decl.name, value.toString()); });
+        if (!used) ImGui::PopStyleVar();
         ImGui::PopID();
     }
 }

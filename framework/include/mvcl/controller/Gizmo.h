@@ -21,13 +21,15 @@
 /// Drags (pointer ray = the primary ray through the pointer):
 ///
 ///     face        the face moves along its axis (closest point of the ray to the axis line);
-///                 the opposite face stays; faces never cross (minimumSize apart)
+///                 the opposite face stays; faces never cross (minimumSize apart), also when
+///                 the pointer runs past the axis's vanishing point
 ///     centre      moves in the camera-facing plane through it; Shift: along the box axis that
 ///                 looks most like the pointer's motion (a point or plane point: along the
 ///                 view direction, the vertical pointer motion setting the depth)
 ///     ring        turns about its axis by the angle the pointer sweeps in the ring's plane; a
 ///                 ring seen edge-on turns by the pointer's motion along the ring's near side
-///     radius      the distance from the centre to the ray in the camera-facing plane
+///     radius      follows the pointer's motion along the direction it was grabbed in (on the
+///                 camera-facing plane through the centre); never below minimumSize
 ///     normal      the arrow's tip follows the pointer on the sphere of the arrow's length
 
 #include <mvcl/core/Export.h>
@@ -92,7 +94,7 @@ struct MVCL_EXPORT GizmoShape {
 struct MVCL_EXPORT GizmoHandle {
     enum class Kind : uint8_t { Center, Face, Ring, Radius, Normal };
     Kind kind = Kind::Center;
-    int gizmo = 0; ///< index into gizmosOf()
+    int gizmo = 0; ///< which shape of the list it came from (Controller::gizmoShapes)
     int axis = 0;  ///< Face, Ring: 0 x, 1 y, 2 z (the gizmo's own axes)
     int side = 1;  ///< Face: +1 or −1
     glm::dvec3 anchor{0.0}; ///< scene space: where it is drawn and grabbed
