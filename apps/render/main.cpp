@@ -125,6 +125,12 @@ std::string markdownCell(const std::string &text) {
 
 /// The property tables of docs/lenses.md, one section per lens type (no module paths: they
 /// differ between machines, and the docs must not).
+/// The doc sentence, with the condition under which the property is used.
+std::string docWithCondition(const PropertyDecl &decl) {
+    if (decl.usedWhen.property.empty()) return decl.doc;
+    return decl.doc + " (used when " + decl.usedWhen.property + "=" + decl.usedWhen.value + ")";
+}
+
 void printLensTypesMarkdown(const LensRegistry &registry) {
     for (const std::string &type : registry.lensTypes()) {
         const std::shared_ptr<Lens> lens = registry.create(type);
@@ -133,7 +139,7 @@ void printLensTypesMarkdown(const LensRegistry &registry) {
         for (const PropertyDecl &decl : lens->properties())
             std::printf("| `%s` | %s | `%s` | %s | %s |\n", decl.name.c_str(), propertyTypeName(decl.type),
                         markdownCell(decl.defaultValue.toString()).c_str(), markdownCell(decl.rangeText()).c_str(),
-                        markdownCell(decl.doc).c_str());
+                        markdownCell(docWithCondition(decl)).c_str());
         std::printf("\n");
     }
 }
@@ -146,7 +152,7 @@ void printLensTypes(const LensRegistry &registry) {
         std::vector<std::vector<std::string>> rows{{"property", "type", "default", "range", "doc"}};
         for (const PropertyDecl &decl : lens->properties())
             rows.push_back({decl.name, propertyTypeName(decl.type), decl.defaultValue.toString(), decl.rangeText(),
-                            decl.doc});
+                            docWithCondition(decl)});
         std::vector<std::size_t> widths(rows.front().size(), 0);
         for (const auto &row : rows)
             for (std::size_t column = 0; column < row.size(); ++column)

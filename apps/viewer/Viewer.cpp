@@ -202,7 +202,7 @@ void Viewer::forwardInput() {
         {GLFW_KEY_1, Key::Digit1}, {GLFW_KEY_2, Key::Digit2}, {GLFW_KEY_3, Key::Digit3},
         {GLFW_KEY_4, Key::Digit4}, {GLFW_KEY_5, Key::Digit5}, {GLFW_KEY_6, Key::Digit6},
         {GLFW_KEY_KP_1, Key::Keypad1}, {GLFW_KEY_KP_3, Key::Keypad3}, {GLFW_KEY_KP_7, Key::Keypad7},
-        {GLFW_KEY_D, Key::D}, {GLFW_KEY_E, Key::E}, {GLFW_KEY_F, Key::F}, {GLFW_KEY_Y, Key::Y},
+        {GLFW_KEY_B, Key::B}, {GLFW_KEY_P, Key::P}, {GLFW_KEY_D, Key::D}, {GLFW_KEY_E, Key::E}, {GLFW_KEY_F, Key::F}, {GLFW_KEY_Y, Key::Y},
         {GLFW_KEY_Z, Key::Z}, {GLFW_KEY_HOME, Key::Home}, {GLFW_KEY_PAGE_UP, Key::PageUp},
         {GLFW_KEY_PAGE_DOWN, Key::PageDown}, {GLFW_KEY_DELETE, Key::Delete},
         {GLFW_KEY_BACKSPACE, Key::Backspace}, {GLFW_KEY_ESCAPE, Key::Escape},

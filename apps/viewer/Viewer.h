@@ -67,6 +67,8 @@ private:
     // ViewerOverlays.cpp
     void drawImage();
     void drawLensOverlays();
+    void drawFitButtons(int lensIndex); ///< ViewerPanels.cpp
+    int m_fitLayer = 0;                 ///< the panel's "fit to layer" choice
     void drawHelpOverlay();
     void drawMessages();
     // ViewerPanels.cpp

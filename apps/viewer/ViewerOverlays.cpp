@@ -2,6 +2,7 @@
 // one brighter, with its handles), the help overlay and the message bar.
 
 #include "Viewer.h"
+#include "ViewerGizmos.h"
 
 #include <mvcl/lens/LensStack.h>
 
@@ -20,6 +21,7 @@ ImU32 colorOf(const glm::vec3 &linear, float alpha) {
 
 /// Every binding, for the help overlay (F1); the controller's own are listed in Controller.h.
 const char *const kBindings[][2] = {
+    {"left drag on a 3D handle", "edit the selected lens's box, sphere, plane (Shift: along an axis)"},
     {"left drag on a lens", "move it (selects it)"},
     {"left drag on a handle", "resize the selected lens (corners, edges, polygon vertices)"},
     {"left drag elsewhere", "orbit about the target"},
@@ -32,6 +34,8 @@ const char *const kBindings[][2] = {
     {"Delete, Backspace", "delete the selected lens"},
     {"Ctrl+D", "duplicate the selected lens"},
     {"E", "enable or disable the selected lens"},
+    {"B, Shift+B", "fit the selected lens's box to the object under the pointer / everything"},
+    {"P", "pin the selected lens to the pointer, or unpin it"},
     {"Escape", "cancel the drag, else deselect"},
     {"Ctrl+Z / Ctrl+Shift+Z, Ctrl+Y", "undo / redo"},
     {"Ctrl+S", "save the session (session.json unless one is open)"},
@@ -96,6 +100,7 @@ void Viewer::drawLensOverlays() {
             draw->AddRectFilled(ImVec2(h.x - r, h.y - r), ImVec2(h.x + r, h.y + r), color);
         }
     }
+    drawGizmos(draw, *m_controller, glm::vec2(0.f), 1.f / m_framebufferScale, m_contentScale);
 }
 
 void Viewer::drawHelpOverlay() {

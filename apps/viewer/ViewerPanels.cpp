@@ -141,16 +141,42 @@ void Viewer::drawLensPanel() {
         regionChanged = true;
     }
     if (regionChanged) edit([&] { m_controller->setLensRegion(index, region); });
+    bool follows = m_controller->pointerFollowingLens() == index;
+    if (ImGui::Checkbox("follow the pointer (P)", &follows)) m_controller->setPointerFollowingLens(follows ? index : -1);
+    drawFitButtons(index);
 
     // The declared properties: one generated control each, no per-lens code.
+    // Properties not in use (clip's sphere while volume=box) are dimmed, still editable.
     const LayerTable &layers = m_controller->scene().layers;
+    const std::vector<PropertyValue> committed = lens.committedValues();
+    const PropertyValues read(lens.properties(), committed);
     for (const PropertyDecl &decl : lens.properties()) {
         PropertyValue value = lens.property(decl.name);
         ImGui::PushID(decl.name.c_str());
+        const bool used = read.isUsed(decl.name);
+        if (!used) ImGui::PushStyleVar(ImGuiStyleVar_Alpha, 0.5f * ImGui::GetStyle().Alpha);
         if (editProperty(decl, value, layers))
             edit([&] { m_controller->setLensProperty(index, decl.name, value.toString()); });
+        if (!used) ImGui::PopStyleVar();
         ImGui::PopID();
     }
+}
+
+void Viewer::drawFitButtons(int index) {
+    // Only lenses with a box or sphere in use can be fitted (the B key fits to the object
+    // under the pointer).
+    const std::vector<GizmoShape> shapes = m_controller->gizmoShapes(index);
+    if (std::ranges::none_of(shapes, [](const GizmoShape &s) {
+            return s.decl.kind == GizmoDecl::Kind::Box || s.decl.kind == GizmoDecl::Kind::Sphere;
+        }))
+        return;
+    if (ImGui::Button("fit to all")) edit([&] { m_controller->fitLens(index, LensFit::All); });
+    ImGui::SameLine();
+    if (ImGui::Button("fit to layer")) edit([&] { m_controller->fitLens(index, LensFit::Layer, m_fitLayer); });
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(60.f * m_contentScale);
+    ImGui::InputInt("##fitLayer", &m_fitLayer);
+    m_fitLayer = std::clamp(m_fitLayer, 0, kMaxLayers - 1);
 }
 
 void Viewer::drawLayersPanel() {

@@ -28,6 +28,7 @@ const std::map<std::string, Arity> &commandTable() {
         {"expect-lenses", {1, 1}}, {"bench-begin", {1, 1}},     {"bench-end", {0, 0}},
         {"add-keyframe", {2, 2}},  {"play", {1, 1}},            {"record", {2, 2}},
         {"stop-recording", {0, 0}}, {"write-turntable", {2, 3}}, {"quit", {0, 1}},
+        {"gizmo-drag", {4, 7}},    {"fit-lens", {2, 3}},        {"follow-pointer", {2, 2}},
     };
     return table;
 }
@@ -63,6 +64,14 @@ bool ScriptCommand::hasWord(const std::string &w) const {
     for (const std::string &a : args)
         if (a == w) return true;
     return false;
+}
+
+KeyModifier ScriptCommand::modifiers() const {
+    KeyModifier m = KeyModifier::None;
+    if (hasWord("shift")) m = m | KeyModifier::Shift;
+    if (hasWord("ctrl")) m = m | KeyModifier::Control;
+    if (hasWord("alt")) m = m | KeyModifier::Alt;
+    return m;
 }
 
 ViewerScript ViewerScript::load(const std::filesystem::path &file) {
@@ -102,7 +111,7 @@ press|release BUTTON [MODS]   BUTTON left|middle|right; MODS shift ctrl alt
 click BUTTON X Y [MODS]       move, press, release
 drag BUTTON X0 Y0 X1 Y1 [N] [MODS]  press at (X0, Y0), N moves (default 8, one per frame), release
 scroll STEPS [X Y]            wheel steps (> 0 zooms in) at the pointer or at (X, Y)
-key NAME [MODS]               F1 F12 F Home 1..6 PageUp PageDown Delete E D Z Y Escape
+key NAME [MODS]               F1 F12 F Home 1..6 PageUp PageDown Delete E D Z Y B P Escape
 add-lens TYPE X Y             a lens of TYPE centred at normalised (X, Y)
 select INDEX                  select lens INDEX (-1: none)
 set-property INDEX NAME VALUE a property of lens INDEX in its text form
@@ -121,6 +130,12 @@ play FILE                     preview animation FILE on the view (input waits un
 record TARGET FPS             record the view to frames/%04d.png or a video at FPS frames per second
 stop-recording                finish the recording
 quit [CODE]                   exit with CODE (default 0)
+gizmo-drag INDEX HANDLE DX DY [MODS]  drag a 3D handle of lens INDEX's first box, sphere, plane
+                              or point by (DX, DY) pixels from where it is drawn; HANDLE center
+                              +x -x +y -y +z -z rotate-x rotate-y rotate-z radius normal
+fit-lens INDEX object|all|layer N  fit lens INDEX's box or sphere to the object under the
+                              pointer, everything, or layer N
+follow-pointer INDEX on|off   pin lens INDEX's region to the pointer, or unpin it
 )";
 }
 

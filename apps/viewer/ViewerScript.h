@@ -3,6 +3,8 @@
 // The whole file is checked before anything runs, so a typo fails at once with its line.
 // The syntax is documented in docs/viewer.md.
 
+#include <mvcl/controller/InputEvent.h>
+
 #include <filesystem>
 #include <istream>
 #include <string>
@@ -19,6 +21,8 @@ struct ScriptCommand {
     int integer(size_t index) const;
     const std::string &word(size_t index) const;
     bool hasWord(const std::string &word) const; ///< e.g. a modifier among the arguments
+    /// The modifier words among the arguments (shift, ctrl, alt).
+    KeyModifier modifiers() const;
 };
 
 class ViewerScript {

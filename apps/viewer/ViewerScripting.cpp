@@ -3,6 +3,7 @@
 // UI frames. One pointer event per frame, so a scripted drag renders like a real one.
 
 #include "Viewer.h"
+#include "ViewerGizmos.h"
 
 #include <mvcl/core/Error.h>
 #include <mvcl/view/RenderSession.h>
@@ -20,14 +21,6 @@ PointerButton buttonNamed(const ScriptCommand &c, const std::string &name) {
     if (name == "middle") return PointerButton::Middle;
     if (name == "right") return PointerButton::Right;
     throw Error("script line " + std::to_string(c.line), c.name + ": unknown button '" + name + "' (left, middle, right)");
-}
-
-KeyModifier modifiersOf(const ScriptCommand &c) {
-    KeyModifier m = KeyModifier::None;
-    if (c.hasWord("shift")) m = m | KeyModifier::Shift;
-    if (c.hasWord("ctrl")) m = m | KeyModifier::Control;
-    if (c.hasWord("alt")) m = m | KeyModifier::Alt;
-    return m;
 }
 
 } // namespace
@@ -64,15 +57,15 @@ bool Viewer::runCommand(const ScriptCommand &c) {
         m_waitFrames = 1;
     } else if (name == "press" || name == "release") {
         const PointerButton button = buttonNamed(c, c.word(0));
-        handle(name == "press" ? InputEvent::pointerPress(m_pointer, button, modifiersOf(c))
-                               : InputEvent::pointerRelease(m_pointer, button, modifiersOf(c)));
+        handle(name == "press" ? InputEvent::pointerPress(m_pointer, button, c.modifiers())
+                               : InputEvent::pointerRelease(m_pointer, button, c.modifiers()));
         m_waitFrames = 1;
     } else if (name == "click") {
         const PointerButton button = buttonNamed(c, c.word(0));
         m_pointer = {float(c.number(1)), float(c.number(2))};
         handle(InputEvent::pointerMove(m_pointer));
-        handle(InputEvent::pointerPress(m_pointer, button, modifiersOf(c)));
-        handle(InputEvent::pointerRelease(m_pointer, button, modifiersOf(c)));
+        handle(InputEvent::pointerPress(m_pointer, button, c.modifiers()));
+        handle(InputEvent::pointerRelease(m_pointer, button, c.modifiers()));
         m_waitFrames = 1;
     } else if (name == "drag") {
         // Spread over frames: press, N moves, release; m_dragStep counts where we are.
@@ -83,18 +76,18 @@ bool Viewer::runCommand(const ScriptCommand &c) {
                               : 8;
         if (m_dragStep < 0) {
             m_pointer = from;
-            handle(InputEvent::pointerMove(m_pointer, modifiersOf(c)));
-            handle(InputEvent::pointerPress(m_pointer, button, modifiersOf(c)));
+            handle(InputEvent::pointerMove(m_pointer, c.modifiers()));
+            handle(InputEvent::pointerPress(m_pointer, button, c.modifiers()));
             m_dragStep = 0;
             return false;
         }
         if (m_dragStep < steps) {
             ++m_dragStep;
             m_pointer = from + (to - from) * (float(m_dragStep) / float(steps));
-            handle(InputEvent::pointerMove(m_pointer, modifiersOf(c)));
+            handle(InputEvent::pointerMove(m_pointer, c.modifiers()));
             return false;
         }
-        handle(InputEvent::pointerRelease(m_pointer, button, modifiersOf(c)));
+        handle(InputEvent::pointerRelease(m_pointer, button, c.modifiers()));
         m_dragStep = -1;
         m_waitFrames = 1;
     } else if (name == "scroll") {
@@ -106,12 +99,12 @@ bool Viewer::runCommand(const ScriptCommand &c) {
             {"1", Key::Digit1}, {"2", Key::Digit2}, {"3", Key::Digit3}, {"4", Key::Digit4}, {"5", Key::Digit5},
             {"6", Key::Digit6}, {"F", Key::F}, {"E", Key::E}, {"D", Key::D}, {"Z", Key::Z}, {"Y", Key::Y},
             {"Home", Key::Home}, {"PageUp", Key::PageUp}, {"PageDown", Key::PageDown}, {"Delete", Key::Delete},
-            {"Backspace", Key::Backspace}, {"Escape", Key::Escape},
+            {"Backspace", Key::Backspace}, {"Escape", Key::Escape}, {"B", Key::B}, {"P", Key::P},
         };
         const std::string &key = c.word(0);
         if (key == "F1") m_showHelp = !m_showHelp;
         else if (key == "F12") writeScreenshot("out/mvcl-viewer-" + std::to_string(++m_screenshotCount) + ".png");
-        else if (const auto it = kKeys.find(key); it != kKeys.end()) handle(InputEvent::keyPress(it->second, modifiersOf(c)));
+        else if (const auto it = kKeys.find(key); it != kKeys.end()) handle(InputEvent::keyPress(it->second, c.modifiers()));
         else fail("unknown key '" + key + "'");
         m_waitFrames = 1;
     } else if (name == "add-lens") {
@@ -177,6 +170,8 @@ bool Viewer::runCommand(const ScriptCommand &c) {
         startRecording(c.word(0), c.number(1));
     } else if (name == "stop-recording") {
         stopRecording();
+    } else if (runGizmoCommand(*m_controller, c, m_pointer)) { // gizmo-drag, fit-lens, follow-pointer
+        m_waitFrames = 1;
     } else if (name == "quit") {
         m_exitCode = c.args.empty() ? 0 : c.integer(0);
         m_quit = true;

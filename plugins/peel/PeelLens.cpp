@@ -1,7 +1,8 @@
 /// peel — depth peeling under the lens: each primary ray shows the k-th surface it meets instead
 /// of the first, whatever layer it belongs to. It needs no layer labels, so it helps where layer
 /// inference is wrong or a model has none. The surfaces passed still cast shadows and reflect
-/// (only primary rays peel). Algebra: the upper lens's `surface` replaces the one below (shading
+/// (only primary rays peel). `layers` chooses what may be peeled: a surface of any other layer
+/// is shown where the ray meets it. Algebra: the upper lens's `surface` replaces the one below (shading
 /// override), so order matters; the same lens twice is the same.
 /// Property table: docs/lenses.md (mvcl-render --list-lenses).
 
@@ -15,7 +16,9 @@ const LensInfo kPeelLensInfo{
     .name = "peel",
     .description = "Shows the k-th surface along each camera ray under the lens.",
     .properties = {PropertyDecl::integer("surface", 2, 1, 32, "",
-                                         "which surface along the ray is shown (1 = the first, as usual)")},
+                                         "which surface along the ray is shown (1 = the first, as usual)"),
+                   PropertyDecl::layers("layers", kAllLayers,
+                                        "the layers peeled away; a surface of another layer stops the peel")},
     .defaultRayTypes = rayTypeBit(RayType::Primary),
     .algebra = {.commutes = false, .idempotent = true},
 };
@@ -29,6 +32,7 @@ protected:
                                 const LensContext &) const override {
         LensContribution contribution;
         contribution.shading.peelSurfaces = properties.integer("surface") - 1;
+        contribution.shading.peelLayers = properties.layers("layers");
         return contribution;
     }
 };

@@ -592,6 +592,33 @@ std::shared_ptr<Lens> cloneWithRegion(const LensFactory &create, const Lens &len
              std::find(decl.choices.begin(), decl.choices.end(), decl.defaultValue.toChoice()) ==
                  decl.choices.end()))
             return fail("a choice needs at least two options, the default among them");
+        // Spaces and conditions name a Choice of the same lens, and only its choices: editors
+        // (the viewer's 3D handles) place values by them.
+        const auto choiceNamed = [&](const std::string &name) {
+            const PropertyDecl *choice = findProperty(lens->properties(), name);
+            return choice && choice->type == PropertyType::Choice ? choice : nullptr;
+        };
+        const auto offers = [](const PropertyDecl &choice, const std::string &value) {
+            return std::find(choice.choices.begin(), choice.choices.end(), value) != choice.choices.end();
+        };
+        if (!decl.spaceFrom.property.empty()) {
+            const PropertyDecl *choice = choiceNamed(decl.spaceFrom.property);
+            if (!choice) return fail("spaceFrom names no Choice property");
+            for (const auto &[value, space] : decl.spaceFrom.spaces)
+                if (!offers(*choice, value)) return fail("spaceFrom maps a value its choice does not offer");
+            for (const std::string &value : choice->choices)
+                if (std::none_of(decl.spaceFrom.spaces.begin(), decl.spaceFrom.spaces.end(),
+                                 [&](const auto &entry) { return entry.first == value; }))
+                    return fail("spaceFrom leaves a choice without a space");
+            const auto chosen = std::find_if(decl.spaceFrom.spaces.begin(), decl.spaceFrom.spaces.end(),
+                                             [&](const auto &entry) { return entry.first == choice->defaultValue.toChoice(); });
+            if (chosen->second != decl.space) return fail("space is not the one spaceFrom gives on the defaults");
+        }
+        if (!decl.usedWhen.property.empty()) {
+            const PropertyDecl *choice = choiceNamed(decl.usedWhen.property);
+            if (!choice) return fail("usedWhen names no Choice property");
+            if (!offers(*choice, decl.usedWhen.value)) return fail("usedWhen asks for a value its choice does not offer");
+        }
     }
     if (findProperty(lens->info().properties, "rays"))
         return ::testing::AssertionFailure() << "declares 'rays' itself (Lens adds it)";

@@ -23,6 +23,32 @@ LensContext farAwayContext() {
     return context;
 }
 
+TEST(LensContext, BoundsSpaceIsFractionsOfTheSceneBoundsAndConvertsBack) {
+    LensContext context = farAwayContext();
+    context.sceneBounds = Bounds3f{{-2.f, 0.f, 1.f}, {2.f, 8.f, 2.f}};
+    EXPECT_EQ(context.scenePoint({0.5, 0.25, 1.0}, PropertySpace::Bounds), glm::vec3(0.f, 2.f, 2.f));
+    EXPECT_DOUBLE_EQ(context.sceneLength(0.5, PropertySpace::Bounds), 4.0) << "of the largest side";
+    // A normal in bounds space turns with the inverse stretch: the plane through (0.5, 0.5, 0)
+    // with bounds normal (1, 1, 0) passes through (1, 0, ·) and (0, 1, ·) in bounds space.
+    const glm::vec3 n = context.sceneNormal({1.0, 1.0, 0.0}, PropertySpace::Bounds);
+    const glm::vec3 a = context.scenePoint({1.0, 0.0, 0.0}, PropertySpace::Bounds);
+    const glm::vec3 b = context.scenePoint({0.0, 1.0, 0.0}, PropertySpace::Bounds);
+    EXPECT_NEAR(glm::dot(n, a - b), 0.f, 1e-6f);
+    for (PropertySpace space : {PropertySpace::World, PropertySpace::Bounds, PropertySpace::View}) {
+        const glm::dvec3 p{0.3, -0.7, 1.9};
+        EXPECT_LT(glm::length(context.propertyPoint(context.scenePointInDouble(p, space), space) - p), 1e-5);
+        EXPECT_LT(glm::length(context.propertyVector(glm::dvec3(context.sceneVector(p, space)), space) - p), 1e-5);
+        EXPECT_NEAR(context.propertyLength(context.sceneLength(0.7, space), space), 0.7, 1e-12);
+    }
+    const Box3d box{{0.25, 0.5, 0.0}, {0.75, 1.0, 0.5}};
+    const LensContext::OrientedBox oriented = context.sceneOrientedBox(box, glm::dmat4(1.0), PropertySpace::Bounds);
+    EXPECT_EQ(oriented.center, glm::dvec3(0.0, 6.0, 1.25));
+    EXPECT_EQ(oriented.halfExtent, glm::dvec3(1.0, 2.0, 0.25));
+    EXPECT_EQ(context.propertyBox(oriented.center - oriented.halfExtent, oriented.center + oriented.halfExtent,
+                                  PropertySpace::Bounds),
+              box);
+}
+
 TEST(LensContext, WorldPointsAreSceneSpacePlusTheWorldOrigin) {
     const LensContext context = farAwayContext();
     const glm::dvec3 world{1.0e6 + 1.25, -2.5e5 - 0.5, 5.0};

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 using namespace mvcl;
@@ -133,7 +134,49 @@ TEST(PolicyComposition, FullQueriesMergeBoxesKeptInsideAndParallelHalfSpaces) {
     std::uniform_real_distribution<float> coordinate(-1.f, 4.f);
     for (int i = 0; i < 2000; ++i) {
         const glm::vec3 p(coordinate(rng), coordinate(rng), coordinate(rng));
-        EXPECT_EQ(q.acceptsPoint(p), a.acceptsPoint(p) && b.acceptsPoint(p));
+        EXPECT_EQ(q.acceptsPoint(p, 0), a.acceptsPoint(p, 0) && b.acceptsPoint(p, 0));
+    }
+}
+
+TEST(PolicyComposition, VolumesOnOtherLayersOrAxesOrCapsNeverMerge) {
+    // Merging a pair into one volume is exact only when both act on the same layers, turn the
+    // same way and draw the same caps; otherwise both stay or one is counted as dropped.
+    const auto full = [] {
+        RayQuery q;
+        for (int i = 0; i < kMaxClipVolumes - 1; ++i)
+            q.addClip(ClipVolume::sphere(glm::vec3(0.f), float(i), ClipVolume::Keep::Outside));
+        q.addClip(ClipVolume::box(glm::vec3(0.f), glm::vec3(2.f), ClipVolume::Keep::Inside));
+        return q;
+    };
+    ClipVolume otherLayers = ClipVolume::box(glm::vec3(1.f), glm::vec3(3.f), ClipVolume::Keep::Inside);
+    otherLayers.setLayerMask(layerBit(1));
+    const float c = std::cos(0.3f), s = std::sin(0.3f);
+    const ClipVolume turned = ClipVolume::orientedBox(glm::vec3(2.f), glm::vec3(1.f),
+                                                      glm::mat3({c, s, 0.f}, {-s, c, 0.f}, {0.f, 0.f, 1.f}),
+                                                      ClipVolume::Keep::Inside);
+    ClipVolume capped = ClipVolume::box(glm::vec3(1.f), glm::vec3(3.f), ClipVolume::Keep::Inside);
+    capped.setCapStyle(ClipVolume::CapStyle::Hatched);
+    for (const ClipVolume &clip : {otherLayers, turned, capped}) {
+        RayQuery b;
+        b.addClip(clip);
+        int dropped = 0;
+        const RayQuery q = intersectQueries(full(), b, &dropped);
+        EXPECT_EQ(dropped, 1);
+        EXPECT_EQ(q, full());
+    }
+    // The same layers, axes and caps: merged, and exact.
+    ClipVolume sameLayers = ClipVolume::box(glm::vec3(1.f), glm::vec3(3.f), ClipVolume::Keep::Inside);
+    RayQuery a = full(), b;
+    b.addClip(sameLayers);
+    int dropped = 0;
+    const RayQuery q = intersectQueries(a, b, &dropped);
+    EXPECT_EQ(dropped, 0);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> coordinate(-1.f, 4.f);
+    for (int i = 0; i < 500; ++i) {
+        const glm::vec3 p(coordinate(rng), coordinate(rng), coordinate(rng));
+        for (uint32_t layer : {0u, 1u})
+            EXPECT_EQ(q.acceptsPoint(p, layer), a.acceptsPoint(p, layer) && b.acceptsPoint(p, layer));
     }
 }
 

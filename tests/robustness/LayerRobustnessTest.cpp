@@ -231,7 +231,7 @@ TEST(RobustnessLayers, ClipPlaneThroughFaceOrEdgeIsConsistent) {
             ++rays;
             if (fa != fb || (fa && (std::bit_cast<uint32_t>(a.t) != std::bit_cast<uint32_t>(b.t) ||
                                     a.primitive != b.primitive)) ||
-                tracer.anyHit(ray, q) != fa || (fa && !q.acceptsPoint(ray.at(a.t))))
+                tracer.anyHit(ray, q) != fa || (fa && !q.acceptsPoint(ray.at(a.t), a.layer)))
                 ++inconsistent;
             if (tracer.closestHit(ray, {}, plain) && std::fabs(ray.at(plain.t).x - 0.5f) < 1e-6f) {
                 ++onPlane;

@@ -132,6 +132,52 @@ TEST(ClipCaps, NestedSolidsShowTheInnermostMaterialOnTheCut) {
     EXPECT_EQ(mismatches, 0);
 }
 
+TEST(ClipCaps, ACutThatSparesALayerNeitherCutsNorCapsIt) {
+    // A red cube (layer 1) inside a blue one (layer 0), cut at z = 0 on layer 1 only: the blue
+    // cube stays whole, so the image is the uncut scene.
+    const Scene nested = sceneOf({box({-1, -1, -1}, {1, 1, 1}, 0, 0), box({-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}, 1, 1)});
+    RayPolicy innerOnly = cutUpperHalf(ClipVolume::CapStyle::Solid);
+    ClipVolume cut = innerOnly.query(RayType::Primary).clip(0);
+    cut.setLayerMask(layerBit(1));
+    innerOnly.query(RayType::Primary).clearClips();
+    innerOnly.query(RayType::Primary).addClip(cut);
+    EXPECT_EQ(differingPixels(render(nested, innerOnly), render(nested, RayPolicy{})), 0);
+    // Cutting only the blue cube opens it onto the whole red cube (uncut, no red cap): the
+    // same as the blue cube cut away alone with the red one standing.
+    cut.setLayerMask(layerBit(0));
+    RayPolicy outerOnly; // shadows too: the truncated scene casts none from above the cut
+    outerOnly.query(RayType::Primary).addClip(cut);
+    outerOnly.query(RayType::Shadow).addClip(cut);
+    const Scene redAloneInCut = sceneOf({box({-1, -1, -1}, {1, 1, 0}, 0, 0), box({-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}, 1, 1)});
+    const std::vector<glm::vec3> spared = render(nested, outerOnly);
+    EXPECT_LE(differingPixels(spared, render(redAloneInCut, RayPolicy{})), kSize / 2) << "only the rim of the cut";
+    EXPECT_GT(differingPixels(spared, render(nested, cutUpperHalf(ClipVolume::CapStyle::Solid))), kSize * kSize / 50)
+        << "the red cube is not capped at z = 0";
+}
+
+TEST(ClipCaps, ATurnedBoxCapsAlongItsTurnedFaces) {
+    // A box cut by a box turned 90° about z is the same cut as the unturned box with x and y
+    // swapped: both images agree.
+    const Scene whole = sceneOf({box({-1, -1, -1}, {1, 1, 1}, 0, 0)});
+    const auto cutBy = [](const ClipVolume &volume) {
+        ClipVolume capped = volume;
+        capped.setCapStyle(ClipVolume::CapStyle::Solid);
+        RayPolicy policy;
+        policy.query(RayType::Primary).addClip(capped);
+        return policy;
+    };
+    const glm::vec3 center(0.5f, 0.5f, 0.5f);
+    const ClipVolume aligned = ClipVolume::box(center - glm::vec3(0.3f, 0.8f, 0.8f), center + glm::vec3(0.3f, 0.8f, 0.8f),
+                                               ClipVolume::Keep::Outside);
+    const glm::mat3 quarterTurn({0.f, 1.f, 0.f}, {-1.f, 0.f, 0.f}, {0.f, 0.f, 1.f});
+    const ClipVolume turned =
+        ClipVolume::orientedBox(center, glm::vec3(0.8f, 0.3f, 0.8f), quarterTurn, ClipVolume::Keep::Outside);
+    ASSERT_TRUE(turned.isOriented());
+    const std::vector<glm::vec3> a = render(whole, cutBy(aligned)), b = render(whole, cutBy(turned));
+    EXPECT_LE(differingPixels(a, b, 1e-3f), kSize / 4);
+    EXPECT_GT(differingPixels(a, render(whole, RayPolicy{})), kSize * kSize / 50) << "it does cut";
+}
+
 TEST(ClipCaps, ASolidInsideTheCutSolidStaysHiddenBehindTheCap) {
     // A red box wholly below the cut, inside the blue one: a cut solid hides what it encloses,
     // so the image is the truncated blue box alone.

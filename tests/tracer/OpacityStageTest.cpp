@@ -91,6 +91,21 @@ TEST(OpacityStage, PeelingShowsTheKthSurfaceAlongThePrimaryRay) {
     EXPECT_EQ(s.radiance(32, 24, none), s.radiance(32, 24, RayPolicy{}));
 }
 
+TEST(OpacityStage, PeelingPassesOnlyItsLayers) {
+    // The centre ray's first surface is the outer cube (layer 0): peeling only layer 1 leaves it
+    // in place; peeling layers 0 and 1 is the same as peeling every layer.
+    const OpacityScene s;
+    RayPolicy innerOnly;
+    innerOnly.shading.peelSurfaces = 1;
+    innerOnly.shading.peelLayers = layerBit(1);
+    EXPECT_EQ(s.radiance(32, 24, innerOnly), s.radiance(32, 24, RayPolicy{}));
+    RayPolicy both = innerOnly, all = innerOnly;
+    both.shading.peelLayers = layerBit(0) | layerBit(1);
+    all.shading.peelLayers = kAllLayers;
+    EXPECT_EQ(s.radiance(32, 24, both), s.radiance(32, 24, all));
+    EXPECT_NE(s.radiance(32, 24, both), s.radiance(32, 24, RayPolicy{}));
+}
+
 TEST(OpacityStage, EdgeOpacityMakesGrazingSurfacesMoreOpaque) {
     const OpacityScene s;
     const RayPolicy plain = outerOpacity(0.f, 0.f), edged = outerOpacity(0.f, 1.f);

@@ -167,7 +167,7 @@ int compareWithBruteForce(const Tracer &tracer, std::mt19937 &rng, int rays, con
         EXPECT_EQ(tracer.anyHit(ray, q), fa) << label;
         hits += fa;
         if (fa) {
-            EXPECT_TRUE(q.acceptsPoint(ray.at(a.t))) << label;
+            EXPECT_TRUE(q.acceptsPoint(ray.at(a.t), a.layer)) << label;
             EXPECT_TRUE((q.layerMask >> a.layer) & 1u) << label;
             EXPECT_GE(a.t, q.tMin) << label;
             EXPECT_LE(a.t, q.tMax) << label;

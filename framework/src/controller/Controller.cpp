@@ -350,29 +350,35 @@ void Controller::Private::placeLenses() {
 }
 
 glm::vec3 Controller::pointUnder(const glm::vec2 &pixel) const {
-    const ViewCoordinates view = coordinates();
-    // What the pixel shows: the lenses over it shape its ray and limit what it may hit.
-    uint64_t lensSet = 0;
-    for (int i = 0; i < d->stack.size(); ++i) {
-        const std::shared_ptr<const LensSnapshot> snapshot = d->stack.lens(i)->snapshot();
-        if (snapshot->enabled && snapshot->region.coverage(pixel, view.viewSize().x, view.viewSize().y) >= 0.5f)
-            lensSet |= uint64_t(1) << unsigned(i);
-    }
-    PixelPolicy policy;
-    policy.ray = d->basePolicy();
-    try {
-        if (lensSet) policy = d->stack.composeSet(d->basePolicy(), lensSet);
-    } catch (const Error &) { // too many clip volumes: the image shows this as an error too
-    }
-    const Ray ray =
-        view.rayThroughPixel(d->camera, policy.samplePosition(pixel, view.viewSize().x, view.viewSize().y));
-    Hit hit;
-    if (d->tracer->closestHit(ray, policy.ray.query(RayType::Primary), hit)) return ray.at(hit.t);
+    Ray ray;
+    if (const std::optional<Hit> hit = d->hitUnder(pixel, &ray)) return ray.at(hit->t);
     // Nothing there: the point at the target's depth, where orbiting and panning work too.
     const glm::vec3 forward = -d->camera.sceneFromCamera()[2];
     const float depth = glm::dot(d->camera.target() - d->camera.eye(), forward);
     const float cosine = glm::dot(ray.direction, forward);
     return cosine > 0.f ? ray.at(depth / cosine) : d->camera.target();
+}
+
+std::optional<Hit> Controller::Private::hitUnder(const glm::vec2 &pixel, Ray *shot) const {
+    const ViewCoordinates view = coordinates();
+    // What the pixel shows: the lenses over it shape its ray and limit what it may hit.
+    uint64_t lensSet = 0;
+    for (int i = 0; i < stack.size(); ++i) {
+        const std::shared_ptr<const LensSnapshot> snapshot = stack.lens(i)->snapshot();
+        if (snapshot->enabled && snapshot->region.coverage(pixel, view.viewSize().x, view.viewSize().y) >= 0.5f)
+            lensSet |= uint64_t(1) << unsigned(i);
+    }
+    PixelPolicy policy;
+    policy.ray = basePolicy();
+    try {
+        if (lensSet) policy = stack.composeSet(basePolicy(), lensSet);
+    } catch (const Error &) { // too many clip volumes: the image shows this as an error too
+    }
+    const Ray ray = view.rayThroughPixel(camera, policy.samplePosition(pixel, view.viewSize().x, view.viewSize().y));
+    if (shot) *shot = ray;
+    Hit hit;
+    if (tracer->closestHit(ray, policy.ray.query(RayType::Primary), hit)) return hit;
+    return std::nullopt;
 }
 
 // --- layers -----------------------------------------------------------------------------------------

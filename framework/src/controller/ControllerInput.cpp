@@ -53,6 +53,13 @@ DragKind Controller::dragKind() const { return d->drag.kind; }
 
 bool Controller::Private::pointerPress(const InputEvent &event) {
     if (drag.kind != DragKind::None) return false; // another button while dragging
+    if (event.button == PointerButton::Left) {
+        // A 3D handle wins over lenses, Shift-pan and orbit.
+        if (const std::optional<GizmoHandle> handle = gizmoAt(event.position)) {
+            startGizmoDrag(selected, *handle, event.position, event.button);
+            return true;
+        }
+    }
     Drag started;
     started.button = event.button;
     started.pressPosition = event.position;
@@ -64,7 +71,8 @@ bool Controller::Private::pointerPress(const InputEvent &event) {
         switch (hit.target) {
         case LensHit::Target::Handle: started.kind = DragKind::ResizeLens; break;
         case LensHit::Target::Lens: started.kind = DragKind::MoveLens; break;
-        case LensHit::Target::Nothing: started.kind = DragKind::Orbit; break;
+        case LensHit::Target::Nothing:
+        case LensHit::Target::Gizmo: started.kind = DragKind::Orbit; break; // handles were tried above
         }
         started.lens = hit.lens;
         started.handle = hit.handle;
@@ -83,7 +91,7 @@ bool Controller::Private::pointerPress(const InputEvent &event) {
 }
 
 bool Controller::Private::pointerMove(const InputEvent &event) {
-    if (drag.kind == DragKind::None) return false;
+    if (drag.kind == DragKind::None) return hover(event.position);
     const glm::vec2 offset = event.position - drag.pressPosition;
     drag.hasMoved = drag.hasMoved || offset != glm::vec2(0.f);
     const ViewCoordinates view = coordinates();
@@ -106,6 +114,7 @@ bool Controller::Private::pointerMove(const InputEvent &event) {
         camera = panCamera(drag.startCamera, offset, viewSize);
         sendCamera();
         break;
+    case DragKind::Gizmo: moveGizmo(event.position, event.modifiers); break;
     case DragKind::None: break;
     }
     return true;
@@ -183,6 +192,14 @@ bool Controller::Private::keyPress(const InputEvent &event) {
     case Key::E:
         if (!hasSelection) return false;
         q.setLensEnabled(selected, !stack.lens(selected)->snapshot()->enabled);
+        return true;
+    case Key::B:
+        if (!hasSelection) return false;
+        q.fitLens(selected, shift ? LensFit::All : LensFit::Object, 0, pointer);
+        return true;
+    case Key::P:
+        if (!hasSelection) return false;
+        q.setPointerFollowingLens(followerIndex() == selected ? -1 : selected);
         return true;
     case Key::Escape:
         if (selected < 0) return false;

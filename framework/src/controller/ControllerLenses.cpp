@@ -195,6 +195,12 @@ int Controller::lensAt(const glm::vec2 &pixel) const {
 
 LensHit Controller::hitTest(const glm::vec2 &pixel) const {
     LensHit hit;
+    if (const std::optional<GizmoHandle> gizmo = d->gizmoAt(pixel)) {
+        hit.target = LensHit::Target::Gizmo;
+        hit.lens = d->selected;
+        hit.gizmo = *gizmo;
+        return hit;
+    }
     if (d->selected >= 0) {
         const ViewCoordinates view = coordinates();
         const float radius = kHandleGrabRadius * d->contentScale;
@@ -203,12 +209,12 @@ LensHit Controller::hitTest(const glm::vec2 &pixel) const {
             const float distance = glm::length(view.pixelFromNormalized(handle.position) - pixel);
             if (distance <= nearest) {
                 nearest = distance;
-                hit = {LensHit::Target::Handle, d->selected, handle};
+                hit = {LensHit::Target::Handle, d->selected, handle, {}};
             }
         }
         if (hit.target == LensHit::Target::Handle) return hit;
     }
-    if (const int lens = lensAt(pixel); lens >= 0) hit = {LensHit::Target::Lens, lens, {}};
+    if (const int lens = lensAt(pixel); lens >= 0) hit = {LensHit::Target::Lens, lens, {}, {}};
     return hit;
 }
 

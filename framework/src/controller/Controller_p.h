@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <memory>
 #include <vector>
 
@@ -37,6 +38,8 @@ struct Controller::Private {
         int lens = -1;
         LensHandle handle;
         LensRegion startRegion;
+        GizmoHandle gizmo;      ///< DragKind::Gizmo
+        GizmoShape gizmoStart;  ///< DragKind::Gizmo
         Camera startCamera;
         Step start; ///< restored by Escape
     };
@@ -69,6 +72,10 @@ struct Controller::Private {
     StepKind lastStep = StepKind::Other;
 
     Drag drag;
+    std::optional<GizmoHandle> hoveredGizmo; ///< of the selected lens, under the pointer
+    glm::vec2 pointer{-1.f};                ///< the pointer's last position (framebuffer px)
+    std::weak_ptr<const Lens> pointerFollower; ///< setPointerFollowingLens: follows the lens, not its index
+    int followerIndex() const;
 
     LensContext sceneContext;            ///< the scene part of placeLenses()'s context
     const Scene *sceneOfContext = nullptr; ///< the scene it was computed for
@@ -134,6 +141,21 @@ struct Controller::Private {
     static LensRegion translatedRegion(const LensRegion &region, const glm::vec2 &offset);
     /// Stages `region` on lens `index` and commits it; restores the lens on error.
     void commitRegion(int index, const LensRegion &region);
+
+    /// The hit the pixel shows (the lenses over it shape its ray and limit what it may hit);
+    /// `shot` gets the ray.
+    std::optional<Hit> hitUnder(const glm::vec2 &pixel, Ray *shot = nullptr) const;
+
+    // --- 3D handles (ControllerGizmos.cpp) ---
+    /// The selected lens's handle under `pixel`, if any.
+    std::optional<GizmoHandle> gizmoAt(const glm::vec2 &pixel) const;
+    /// Starts a gizmo drag of `handle` of lens `index` at `pixel` (one edit step until release).
+    void startGizmoDrag(int index, const GizmoHandle &handle, const glm::vec2 &pixel, PointerButton button);
+    /// The open gizmo drag with the pointer at `pixel`.
+    void moveGizmo(const glm::vec2 &pixel, KeyModifier modifiers);
+    /// A pointer move that is not a drag: the hovered handle, a lens that follows the pointer.
+    /// True when something to draw changed.
+    bool hover(const glm::vec2 &pixel);
 
     // --- input (ControllerInput.cpp) ---
     bool pointerPress(const InputEvent &event);

@@ -34,13 +34,14 @@ void ShadingOverride::applyTo(ShadingPolicy &shading) const {
     if (layerOpacity) shading.layerOpacity = *layerOpacity;
     if (edgeOpacity) shading.edgeOpacity = *edgeOpacity;
     if (peelSurfaces) shading.peelSurfaces = *peelSurfaces;
+    if (peelLayers) shading.peelLayers = *peelLayers;
     if (falseColor) shading.falseColor = *falseColor;
     if (edges) shading.edges = *edges;
 }
 
 bool ShadingOverride::isEmpty() const {
     return !shadows && !shadowStrength && !shadowTint && !reflections && !refractions && !maxDepth &&
-           !layerOpacity && !edgeOpacity && !peelSurfaces && !falseColor && !edges;
+           !layerOpacity && !edgeOpacity && !peelSurfaces && !peelLayers && !falseColor && !edges;
 }
 
 LensContribution LensContribution::restrictedTo(uint8_t rayTypes) const {
@@ -52,6 +53,7 @@ LensContribution LensContribution::restrictedTo(uint8_t rayTypes) const {
         restricted.shading.layerOpacity.reset(); // the opacity stage acts on primary hits
         restricted.shading.edgeOpacity.reset();
         restricted.shading.peelSurfaces.reset();
+        restricted.shading.peelLayers.reset();
         restricted.shading.falseColor.reset();
         restricted.shading.edges.reset();
     }

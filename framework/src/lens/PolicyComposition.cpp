@@ -8,8 +8,9 @@ namespace mvcl {
 
 namespace {
 // Folds `clip` into a volume of `query` whose intersection with it has the same shape: two
-// kept-inside boxes (their overlap is a box), or two half-spaces of the same normal and keep.
-// True if it did, so the query needs no new slot.
+// kept-inside boxes with the same axes (their overlap is a box), or two half-spaces of the same
+// normal and keep — each pair acting on the same layers and drawing the same caps. True if it
+// did, so the query needs no new slot.
 bool mergeInto(RayQuery &query, const ClipVolume &clip) {
     using Shape = ClipVolume::Shape;
     using Keep = ClipVolume::Keep;
@@ -17,16 +18,16 @@ bool mergeInto(RayQuery &query, const ClipVolume &clip) {
     bool done = false;
     for (const ClipVolume &c : query.clips()) {
         ClipVolume next = c;
-        if (!done && c.keep() == clip.keep() && c.shape() == clip.shape()) {
-            if (c.shape() == Shape::Box && c.keep() == Keep::Inside) {
-                next = ClipVolume::box(glm::max(c.boxMin(), clip.boxMin()), glm::min(c.boxMax(), clip.boxMax()),
-                                       Keep::Inside);
+        if (!done && c.keep() == clip.keep() && c.shape() == clip.shape() && c.layerMask() == clip.layerMask() &&
+            c.capStyle() == clip.capStyle()) {
+            if (c.shape() == Shape::Box && c.keep() == Keep::Inside && c.boxFromScene() == clip.boxFromScene()) {
+                next = c.withBox(glm::max(c.boxMin(), clip.boxMin()), glm::min(c.boxMax(), clip.boxMax()));
                 done = true;
             } else if (c.shape() == Shape::HalfSpace && c.normal() == clip.normal()) {
                 // Kept inside: both hold, the larger offset. Cut away: either cuts, the smaller.
                 const float offset = c.keep() == Keep::Inside ? std::max(c.offset(), clip.offset())
                                                               : std::min(c.offset(), clip.offset());
-                next = ClipVolume::halfSpace(c.normal(), offset, c.keep());
+                next = c.withOffset(offset);
                 done = true;
             }
         }

@@ -33,7 +33,9 @@ uint64_t renderHash(const PixelPolicy &p) {
         add(q.layerMask);
         add(uint64_t(q.clipCount()));
         for (const ClipVolume &clip : q.clips()) {
-            add(uint64_t(clip.capStyle()) << 16 | uint64_t(clip.shape()) << 8 | uint64_t(clip.keep()));
+            add(uint64_t(clip.layerMask()) << 32 | uint64_t(clip.isOriented()) << 24 | uint64_t(clip.capStyle()) << 16 |
+                uint64_t(clip.shape()) << 8 | uint64_t(clip.keep()));
+            addMat3(clip.boxFromScene());
             addVec3(clip.boxMin()); // also the centre or normal
             addVec3(clip.boxMax());
             addFloat(clip.radius()); // also the offset
@@ -47,6 +49,7 @@ uint64_t renderHash(const PixelPolicy &p) {
     for (float opacity : s.layerOpacity) addFloat(opacity);
     addFloat(s.edgeOpacity);
     add(uint32_t(s.peelSurfaces));
+    add(s.peelLayers);
     add(uint64_t(s.falseColor.mode));
     addFloat(s.falseColor.depthNear);
     addFloat(s.falseColor.depthFar);

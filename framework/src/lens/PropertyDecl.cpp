@@ -318,7 +318,7 @@ std::string PropertyDecl::rangeText() const {
     switch (type) {
     case PropertyType::Bool: return "true|false";
     case PropertyType::Transform:
-        return std::string("affine (identity or 12 numbers), ") + propertySpaceName(space) + " space";
+        return "affine (identity or 12 numbers), " + spaceText();
     case PropertyType::Int:
     case PropertyType::Real:
     case PropertyType::Color:
@@ -337,8 +337,7 @@ std::string PropertyDecl::rangeText() const {
         }
         if (type == PropertyType::Point3 || type == PropertyType::Vector3 || type == PropertyType::Box3) {
             text += " per component, ";
-            text += propertySpaceName(space);
-            text += " space";
+            text += spaceText();
         }
         return text;
     }
@@ -347,6 +346,29 @@ std::string PropertyDecl::rangeText() const {
     case PropertyType::RayTypeSet: return "all|none|list of primary,shadow,reflection,refraction";
     }
     return {};
+}
+
+std::string PropertyDecl::spaceText() const {
+    if (spaceFrom.property.empty()) return std::string(propertySpaceName(space)) + " space";
+    std::string text = "space by " + spaceFrom.property + " (";
+    for (size_t i = 0; i < spaceFrom.spaces.size(); ++i) {
+        if (i > 0) text += ", ";
+        text += spaceFrom.spaces[i].first + ": " + propertySpaceName(spaceFrom.spaces[i].second);
+    }
+    return text + ")";
+}
+
+PropertyDecl PropertyDecl::withSpaceFrom(std::string choice,
+                                         std::vector<std::pair<std::string, PropertySpace>> spaces) const {
+    PropertyDecl decl = *this;
+    decl.spaceFrom = {std::move(choice), std::move(spaces)};
+    return decl;
+}
+
+PropertyDecl PropertyDecl::whenChoice(std::string choice, std::string value) const {
+    PropertyDecl decl = *this;
+    decl.usedWhen = {std::move(choice), std::move(value)};
+    return decl;
 }
 
 const PropertyDecl *findProperty(const PropertyTable &table, std::string_view name) {

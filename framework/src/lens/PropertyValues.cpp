@@ -90,6 +90,20 @@ const PropertyDecl &PropertyValues::declaration(std::string_view name) const {
     throw Error("lens properties", "no property '" + std::string(name) + "' is declared");
 }
 
+PropertySpace PropertyValues::space(std::string_view name) const {
+    const PropertyDecl &decl = declaration(name);
+    if (decl.spaceFrom.property.empty()) return decl.space;
+    const std::string &chosen = choice(decl.spaceFrom.property);
+    for (const auto &[value, space] : decl.spaceFrom.spaces)
+        if (value == chosen) return space;
+    return decl.space; // a choice the declaration maps to nothing keeps the declared space
+}
+
+bool PropertyValues::isUsed(std::string_view name) const {
+    const PropertyDecl &decl = declaration(name);
+    return decl.usedWhen.property.empty() || value(decl.usedWhen.property).toChoice() == decl.usedWhen.value;
+}
+
 std::vector<std::string> PropertyValues::unreadNames() const {
     std::vector<std::string> names;
     for (size_t i = 0; i < m_table.size(); ++i)

@@ -3,6 +3,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -24,6 +25,16 @@ Span spanOf(const ClipVolume &volume, const glm::dvec3 &o, const glm::dvec3 &d) 
     Span span;
     switch (volume.shape()) {
     case ClipVolume::Shape::Box: {
+        if (volume.isOriented()) {
+            // The same slabs in the box's own axes; its normals turned back into scene space.
+            const glm::dmat3 boxFromScene(volume.boxFromScene());
+            ClipVolume aligned = ClipVolume::box(volume.boxMin(), volume.boxMax(), volume.keep());
+            Span local = spanOf(aligned, boxFromScene * o, boxFromScene * d);
+            const glm::dmat3 sceneFromBox = glm::transpose(boxFromScene);
+            local.enterNormal = sceneFromBox * local.enterNormal;
+            local.leaveNormal = sceneFromBox * local.leaveNormal;
+            return local;
+        }
         const glm::dvec3 lo(volume.boxMin()), hi(volume.boxMax());
         span.enter = -kInfinity;
         span.leave = kInfinity;
@@ -80,7 +91,7 @@ bool hasCappedClip(const RayQuery &query) {
     return false;
 }
 
-std::optional<ClipCap> clipCapBefore(const Ray &ray, const RayQuery &query, float hitT) {
+std::optional<ClipCap> clipCapBefore(const Ray &ray, const RayQuery &query, float hitT, uint32_t layer) {
     const glm::dvec3 o(ray.origin), d(ray.direction);
     const double h = hitT;
     // The run that holds h is the intersection of each volume's accepted run holding h, so it
@@ -88,7 +99,9 @@ std::optional<ClipCap> clipCapBefore(const Ray &ray, const RayQuery &query, floa
     double runStart = -kInfinity;
     glm::dvec3 startNormal(0.0);
     ClipVolume::CapStyle startStyle = ClipVolume::CapStyle::None;
+    uint32_t startLayers = 0;
     for (const ClipVolume &clip : query.clips()) {
+        if (!clip.appliesTo(layer)) continue; // it neither cuts nor caps this layer
         const Span span = spanOf(clip, o, d);
         double start = -kInfinity;
         glm::dvec3 normal(0.0);
@@ -100,7 +113,8 @@ std::optional<ClipCap> clipCapBefore(const Ray &ray, const RayQuery &query, floa
             // Accepted outside, hit beyond the volume: the run begins where the ray leaves it.
             start = span.leave, normal = span.leaveNormal;
         }
-        if (start > runStart) runStart = start, startNormal = normal, startStyle = clip.capStyle();
+        if (start > runStart)
+            runStart = start, startNormal = normal, startStyle = clip.capStyle(), startLayers = clip.layerMask();
     }
     if (startStyle == ClipVolume::CapStyle::None || !(runStart > double(query.tMin)) || !(runStart < h) ||
         !std::isfinite(runStart))
@@ -108,13 +122,41 @@ std::optional<ClipCap> clipCapBefore(const Ray &ray, const RayQuery &query, floa
     if (glm::dot(startNormal, d) > 0.0) startNormal = -startNormal;
     const double length = glm::length(startNormal);
     if (!(length > 0.0)) return std::nullopt;
-    return ClipCap{float(runStart), glm::vec3(startNormal / length), startStyle};
+    return ClipCap{float(runStart), glm::vec3(startNormal / length), startStyle, startLayers};
+}
+
+std::optional<ClipCap> nearestClipCap(const Ray &ray, const RayQuery &query, float hitT, uint32_t hitLayer) {
+    std::optional<ClipCap> nearest = clipCapBefore(ray, query, hitT, hitLayer);
+    // Volumes that act on the hit's layer were counted; those that spare it cut other layers,
+    // whose runs (one layer of each mask stands for it) may begin on a cap in front of the hit.
+    uint32_t triedMasks[kMaxClipVolumes];
+    int tried = 0;
+    for (const ClipVolume &clip : query.clips()) {
+        const uint32_t mask = clip.layerMask();
+        if (clip.capStyle() == ClipVolume::CapStyle::None || mask == 0 || clip.appliesTo(hitLayer) ||
+            std::find(triedMasks, triedMasks + tried, mask) != triedMasks + tried)
+            continue;
+        triedMasks[tried++] = mask;
+        const std::optional<ClipCap> cap = clipCapBefore(ray, query, hitT, uint32_t(std::countr_zero(mask)));
+        if (cap && (!nearest || cap->t < nearest->t)) nearest = cap;
+    }
+    return nearest;
 }
 
 std::optional<ClipCap> firstCappedRunStart(const Ray &ray, const RayQuery &query) {
     const glm::dvec3 o(ray.origin), d(ray.direction);
+    // Runs are per layer once volumes spare layers; those of the first capped volume's lowest
+    // layer stand for all (one lens's volumes share their layers).
+    uint32_t layer = kMaxLayers;
+    for (const ClipVolume &clip : query.clips())
+        if (clip.capStyle() != ClipVolume::CapStyle::None && clip.layerMask() != 0) {
+            layer = uint32_t(std::countr_zero(clip.layerMask()));
+            break;
+        }
+    if (layer == kMaxLayers) return std::nullopt;
     std::vector<double> boundaries;
     for (const ClipVolume &clip : query.clips()) {
+        if (!clip.appliesTo(layer)) continue;
         const Span span = spanOf(clip, o, d);
         if (span.enter > span.leave) continue;
         for (const double t : {span.enter, span.leave})
@@ -126,8 +168,8 @@ std::optional<ClipCap> firstCappedRunStart(const Ray &ray, const RayQuery &query
     for (size_t i = 0; i < boundaries.size(); ++i) {
         const double next = i + 1 < boundaries.size() ? boundaries[i + 1] : boundaries[i] + 1.0 + std::abs(boundaries[i]);
         const double middle = 0.5 * (boundaries[i] + next);
-        if (!(next > boundaries[i]) || !query.acceptsPoint(glm::vec3(o + middle * d))) continue;
-        return clipCapBefore(ray, query, float(middle));
+        if (!(next > boundaries[i]) || !query.acceptsPoint(glm::vec3(o + middle * d), layer)) continue;
+        return clipCapBefore(ray, query, float(middle), layer);
     }
     return std::nullopt;
 }

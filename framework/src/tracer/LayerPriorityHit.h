@@ -46,7 +46,7 @@ public:
         const bool improvesLayer = !(m_layers & bit) || hitPrecedes(cand, m_nearest[cand.layer].hit);
         const bool narrows = end < m_windowEnd;
         if (!improvesLayer && !narrows) return false;
-        if (!c.acceptsPoint(cand.t)) return false;
+        if (!c.acceptsPoint(cand.t, cand.layer)) return false;
         if (narrows) m_windowEnd = end;
         if (improvesLayer) {
             m_nearest[cand.layer].hit = cand;

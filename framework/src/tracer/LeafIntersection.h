@@ -94,7 +94,7 @@ inline bool testSphere(const PrimBlock &block, int lane, const PrimInfo &info,
         if (!c.acceptsT(t)) continue;
         const Hit cand = analyticCandidate(GeometryKind::Sphere, t, info.layer, info.geometry);
         if (AnyHit) {
-            if (c.acceptsPoint(t)) return true;
+            if (c.acceptsPoint(t, info.layer)) return true;
             continue;
         }
         // The far root cannot do better than the near one, so stop once the near one cannot
@@ -142,7 +142,7 @@ inline bool testLeaf(uint32_t leaf, const PrimBlock *blocks, const PrimInfo *inf
             hits &= hits - 1;
             if (!c.acceptsT(th.t[lane])) continue;
             if (AnyHit) {
-                if (c.acceptsPoint(th.t[lane])) return true;
+                if (c.acceptsPoint(th.t[lane], info[4 * b + lane].layer)) return true;
                 continue;
             }
             found |= best.offer(c, triangleCandidate(info[4 * b + lane], th.t[lane], th.b1[lane],

@@ -23,7 +23,7 @@ public:
     /// true if the result changed.
     MVCL_KERNEL_INLINE bool offer(const RayContext &c, const Hit &cand, float /*tError*/) {
         if (!hitPrecedes(cand, m_best)) return false;
-        if (!c.acceptsPoint(cand.t)) return false;
+        if (!c.acceptsPoint(cand.t, cand.layer)) return false;
         m_best = cand;
         return true;
     }

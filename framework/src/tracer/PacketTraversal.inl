@@ -301,7 +301,7 @@ unsigned leafAcrossRays(uint32_t leaf, unsigned active, const PrimBlock *blocks,
                     const RayContext &c = s.context(i);
                     if (!c.acceptsT(ti)) return;
                     if (AnyHit) {
-                        if (!c.acceptsPoint(ti)) return;
+                        if (!c.acceptsPoint(ti, info[4 * bi + unsigned(lane)].layer)) return;
                         changed |= 1u << i;
                         rays &= ~(1u << i);
                         p.tHigh[i] = -kInfinity;

@@ -8,6 +8,6 @@
 
 namespace mvcl::detail {
 
-bool RayContext::clipsAccept(float t) const { return query->acceptsPoint(ray.at(t)); }
+bool RayContext::clipsAccept(float t, uint32_t layer) const { return query->acceptsPoint(ray.at(t), layer); }
 
 } // namespace mvcl::detail

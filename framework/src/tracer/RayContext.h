@@ -105,12 +105,12 @@ struct RayContext {
 
     /// The query's t-range test, applied to every candidate (never by the box test).
     MVCL_KERNEL_INLINE bool acceptsT(float t) const { return t > 0.f && t >= tMin && t <= tMax && t < kInfinity; }
-    MVCL_KERNEL_INLINE bool acceptsPoint(float t) const { return !hasClips || clipsAccept(t); }
-    /// The query's clip volumes at the point at t. Out of line, in baseline code (RayContext.cpp):
+    MVCL_KERNEL_INLINE bool acceptsPoint(float t, uint32_t layer) const { return !hasClips || clipsAccept(t, layer); }
+    /// The query's clip volumes at the point at t, for a hit on `layer`. Out of line, in baseline code (RayContext.cpp):
     /// the kernels of every instruction set call this one copy instead of each compiling the
     /// public headers' inline clip tests, which they could then share (KernelIsa.h). Only
     /// queries with clip volumes pay for the call.
-    bool clipsAccept(float t) const;
+    bool clipsAccept(float t, uint32_t layer) const;
 };
 
 } // namespace mvcl::detail

@@ -12,8 +12,25 @@ namespace {
 bool isFinite(const glm::vec3 &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 } // namespace
 
+ClipVolume ClipVolume::orientedBox(const glm::vec3 &center, const glm::vec3 &halfExtent, const glm::mat3 &axes,
+                                   Keep keep) {
+    const glm::mat3 boxFromScene = glm::transpose(axes);
+    const glm::vec3 boxCenter = boxFromScene * center;
+    ClipVolume volume = box(boxCenter - halfExtent, boxCenter + halfExtent, keep);
+    // Axis-aligned boxes keep the exact fast path (and compare equal to ones made by box()).
+    if (axes != glm::mat3(1.f)) {
+        volume.m_oriented = true;
+        volume.m_boxFromScene = boxFromScene;
+    } else {
+        volume = box(center - halfExtent, center + halfExtent, keep);
+    }
+    return volume;
+}
+
 bool ClipVolume::isValid() const {
     if (!isFinite(m_point) || !isFinite(m_second) || !std::isfinite(m_scalar)) return false;
+    for (int c = 0; c < 3; ++c)
+        if (!isFinite(m_boxFromScene[c])) return false;
     switch (m_shape) {
     case Shape::Box: return m_point.x <= m_second.x && m_point.y <= m_second.y && m_point.z <= m_second.z;
     case Shape::Sphere: return m_scalar >= 0.f;

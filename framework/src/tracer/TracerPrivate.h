@@ -137,7 +137,7 @@ bool Tracer::Private::testPlanes(const detail::RayContext &c, Best &best) const 
         if (!c.acceptsT(t)) continue;
         const Hit cand = detail::analyticCandidate(GeometryKind::Plane, t, pl.layer, pl.geometry);
         if (AnyHit) {
-            if (c.acceptsPoint(t)) return true;
+            if (c.acceptsPoint(t, pl.layer)) return true;
             continue;
         }
         found |= best.offer(c, cand, detail::analyticTError(t));

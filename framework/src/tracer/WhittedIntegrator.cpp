@@ -205,11 +205,13 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
     if (mayCap) {
         // The run of accepted points that holds the hit, or (no hit at all: a slab through a
         // solid) the first run, begins on a capped surface: is that point inside a solid?
-        cap = found ? detail::clipCapBefore(ray, query, hit.t) : detail::firstCappedRunStart(ray, query);
+        cap = found ? detail::nearestClipCap(ray, query, hit.t, hit.layer) : detail::firstCappedRunStart(ray, query);
         Hit solid;
         // Between the run's start and the accepted hit every point is accepted, so that hit is
-        // the first surface beyond the start: the walk begins with it.
-        if (cap && solidAround(ray, query, cap->t, found ? &hit : nullptr, solid))
+        // the first surface beyond the start: the walk begins with it. Only a solid of a layer
+        // the capping volume cuts gets the cap.
+        if (cap && solidAround(ray, query, cap->t, found ? &hit : nullptr, solid) &&
+            ((cap->layers >> solid.layer) & 1u))
             hit = solid;
         else
             cap.reset();
@@ -257,7 +259,8 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
     // peelSurfaces ones at opacity 0. A cap is solid: nothing shows through it.
     p.alpha = 1.f;
     p.behind = glm::vec3(0.f);
-    const bool peeled = isPrimary && !cap && depth < std::min(shading.peelSurfaces, kDepthCeiling);
+    const bool peeled = isPrimary && !cap && depth < std::min(shading.peelSurfaces, kDepthCeiling) &&
+                        (shading.peelLayers & layerBit(hit.layer)) != 0;
     if (peeled ||
         (isPrimary && !cap && (plan.translucentLayers & layerBit(hit.layer)) != 0 && depth < kDepthCeiling)) {
         const float facing = std::min(std::abs(glm::dot(surface.shadingNormal, d)), 1.f);

@@ -12,6 +12,9 @@
 ///
 /// Key bindings of handle() (Ctrl is the Control modifier):
 ///
+///     left drag on a 3D handle         edit the selected lens's box, sphere, plane, point or
+///                                      rotation (Gizmo.h; with Shift: along an axis or the
+///                                      view direction); wins over lenses, Shift-pan and orbit
 ///     left drag on a lens              move it (the lens under the pointer is selected)
 ///     left drag on a handle            resize the selected lens (corners, edge midpoints;
 ///                                      polygon vertices)
@@ -26,6 +29,9 @@
 ///     Delete, Backspace                delete the selected lens
 ///     Ctrl+D                           duplicate the selected lens
 ///     E                                enable or disable the selected lens
+///     B                                fit the selected lens's box or sphere to the object under
+///                                      the pointer (Shift+B: to everything)
+///     P                                pin the selected lens to the pointer, or unpin it
 ///     Escape                           cancel the drag in progress, else deselect
 ///     Ctrl+Z                           undo
 ///     Ctrl+Shift+Z, Ctrl+Y             redo
@@ -45,6 +51,7 @@
 #include <mvcl/core/Export.h>
 
 #include <mvcl/controller/CameraNavigation.h>
+#include <mvcl/controller/Gizmo.h>
 #include <mvcl/controller/InputEvent.h>
 #include <mvcl/controller/LensHandle.h>
 #include <mvcl/controller/SessionState.h>
@@ -82,14 +89,23 @@ struct LensHit {
         Nothing, ///< the image: a drag orbits or pans
         Lens,    ///< the body of lens `lens`: a drag moves it
         Handle,  ///< `handle` of lens `lens`: a drag resizes it
+        Gizmo,   ///< `gizmo`, a 3D handle of the selected lens `lens`: a drag edits its property
     };
     Target target = Target::Nothing;
     int lens = -1;
     LensHandle handle;
+    GizmoHandle gizmo;
+};
+
+/// What fitLens() fits a lens's box or sphere to.
+enum class LensFit : uint8_t {
+    Object, ///< the mesh (or sphere) under a framebuffer position
+    Layer,  ///< every mesh and sphere of one layer
+    All,    ///< the whole scene
 };
 
 /// The gesture in progress.
-enum class DragKind : uint8_t { None, MoveLens, ResizeLens, Orbit, Pan };
+enum class DragKind : uint8_t { None, MoveLens, ResizeLens, Orbit, Pan, Gizmo };
 
 class MVCL_EXPORT Controller {
 public:
@@ -209,6 +225,31 @@ public:
     std::vector<LensHandle> lensHandles(int index) const;
     /// How near (framebuffer pixels, before contentScale) a handle must be to be grabbed.
     static constexpr float kHandleGrabRadius = 6.f;
+
+    // --- 3D handles (ControllerGizmos.cpp; the geometry is Gizmo.h's) --------------------------
+    /// The gizmos of lens `index` whose properties are in use, in scene space; GizmoHandle::gizmo
+    /// indexes this list.
+    std::vector<GizmoShape> gizmoShapes(int index) const;
+    /// The handles of lens `index` as they are drawn now.
+    std::vector<GizmoHandle> gizmoHandles(int index) const;
+    /// The camera and view size the handles are drawn in.
+    GizmoView gizmoView() const;
+    /// What the viewer draws for the selected lens (nothing when none is selected or it is
+    /// disabled), with the handle under the pointer hovered and the dragged one active.
+    GizmoDrawing gizmoDrawing() const;
+    /// Drags the handle named `handle` (GizmoHandle::name) of lens `index`'s first gizmo by
+    /// `offset` framebuffer pixels from where it is drawn, as a pointer would (one undo step);
+    /// selects the lens. Throws mvcl::Error naming the lens when it has no such handle.
+    void dragGizmoHandle(int index, std::string_view handle, const glm::vec2 &offset,
+                         KeyModifier modifiers = KeyModifier::None);
+    /// Sets lens `index`'s first box (else sphere) gizmo around `what`: the object under `pixel`,
+    /// layer `layer`, or the whole scene (a box loses its rotation). One undo step. Throws
+    /// mvcl::Error when the lens has no box or sphere, or there is nothing to fit to.
+    void fitLens(int index, LensFit what, int layer = 0, const glm::vec2 &pixel = glm::vec2(0.f));
+    /// Pins lens `index`'s region to the pointer: every pointer move that is not a drag centres
+    /// the region there (not an undo step). −1 unpins. Only one lens follows at a time.
+    void setPointerFollowingLens(int index);
+    int pointerFollowingLens() const;
     /// Where a duplicate goes relative to its original (normalised).
     static constexpr float kDuplicateOffset = 0.03f;
 

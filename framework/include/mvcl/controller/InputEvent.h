@@ -37,7 +37,7 @@ enum class Key : uint8_t {
     Other,
     Digit1, Digit2, Digit3, Digit4, Digit5, Digit6,
     Keypad1, Keypad3, Keypad7,
-    D, E, F, Y, Z,
+    B, D, E, F, P, Y, Z,
     Home, PageUp, PageDown, Delete, Backspace, Escape,
 };
 

@@ -29,6 +29,7 @@ struct MVCL_EXPORT ShadingOverride {
     std::optional<std::array<float, kMaxLayers>> layerOpacity;
     std::optional<float> edgeOpacity;
     std::optional<int> peelSurfaces; ///< see ShadingPolicy::peelSurfaces (primary rays)
+    std::optional<uint32_t> peelLayers; ///< see ShadingPolicy::peelLayers (primary rays)
     std::optional<FalseColorPolicy> falseColor; ///< see ShadingPolicy::falseColor (primary rays)
     std::optional<EdgePolicy> edges;            ///< see ShadingPolicy::edges (primary rays)
 

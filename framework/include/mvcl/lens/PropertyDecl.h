@@ -11,6 +11,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace mvcl {
@@ -27,6 +28,31 @@ struct MVCL_EXPORT PropertyDecl {
     std::string unit;  ///< e.g. "scene units", "px"; empty if unitless
     std::string doc;   ///< one sentence for docs, tooltips and --help
     std::vector<std::string> choices; ///< Choice only
+
+    /// Point3, Vector3, Box3, Transform whose space a Choice property of the same lens picks
+    /// (clip's frame=scene|world): the choice's name and the space of each of its values.
+    /// Empty: `space` always. PropertyValues::space() resolves it, so that editors (gizmos)
+    /// and the lens agree on where the value sits.
+    struct SpaceChoice {
+        std::string property;
+        std::vector<std::pair<std::string, PropertySpace>> spaces;
+        bool operator==(const SpaceChoice &) const = default;
+    };
+    SpaceChoice spaceFrom;
+    /// The property matters only while the Choice property `usedWhen.property` has the value
+    /// `usedWhen.value` (clip's sphere centre only while volume=sphere). Empty: always.
+    /// Editors hide or dim it otherwise; gizmos are offered only for properties in use.
+    struct Condition {
+        std::string property;
+        std::string value;
+        bool operator==(const Condition &) const = default;
+    };
+    Condition usedWhen;
+
+    /// This declaration with its space picked by the Choice property `choice` (see spaceFrom).
+    PropertyDecl withSpaceFrom(std::string choice, std::vector<std::pair<std::string, PropertySpace>> spaces) const;
+    /// This declaration used only while `choice` has `value` (see usedWhen).
+    PropertyDecl whenChoice(std::string choice, std::string value) const;
 
     static PropertyDecl boolean(std::string name, bool defaultValue, std::string doc);
     static PropertyDecl integer(std::string name, int defaultValue, int minimum, int maximum,
@@ -57,6 +83,8 @@ struct MVCL_EXPORT PropertyDecl {
     void validate(const PropertyValue &value) const;
     /// "[min, max] unit" / "one of a|b|c" — for docs and --help.
     std::string rangeText() const;
+    /// "world space", or "space by frame (scene: bounds, world: world)".
+    std::string spaceText() const;
 };
 
 using PropertyTable = std::vector<PropertyDecl>;

@@ -36,6 +36,11 @@ public:
     glm::dvec3 vector3(std::string_view name) const;
     Box3d box3(std::string_view name) const;
     glm::dmat4 transform(std::string_view name) const;
+    /// The space `name`'s value is in: its declared space, or the one its spaceFrom choice
+    /// picks (that read counts as a read of the choice).
+    PropertySpace space(std::string_view name) const;
+    /// False while the property's usedWhen condition does not hold.
+    bool isUsed(std::string_view name) const;
     /// The declaration of `name` (its space, range); does not count as a read.
     const PropertyDecl &declaration(std::string_view name) const;
     const PropertyValue &value(std::string_view name) const;

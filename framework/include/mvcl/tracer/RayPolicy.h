@@ -79,6 +79,9 @@ struct ShadingPolicy {
     /// Primary rays pass through this many surfaces and show the next one (depth peeling: 0 =
     /// the first surface, as usual). Needs no layers: it counts surfaces along the ray.
     int peelSurfaces = 0;
+    /// The layers peeling passes through (bit i: layer i); a surface of another layer is shown
+    /// where the ray meets it, so a peel can open the skin and leave the heart whole.
+    uint32_t peelLayers = kAllLayers;
     /// Primary hits show a false colour instead of their lit colour (see FalseColorMode).
     FalseColorPolicy falseColor{};
     /// Lines over primary hits (see EdgeLineMode).

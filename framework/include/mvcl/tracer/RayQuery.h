@@ -7,6 +7,8 @@
 
 #include <mvcl/model/LayerTable.h>
 
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 #include <glm/vec3.hpp>
 
 #include <array>
@@ -17,11 +19,13 @@
 namespace mvcl {
 
 /// A region of scene space whose hits are discarded (a cut) or kept exclusively. Made by one of
-/// the factories; the accessors name what each shape stores.
+/// the factories; the accessors name what each shape stores. A volume acts on the layers of
+/// its layer mask only (all by default): hits on other layers pass it untouched, and it caps
+/// only the solids it cuts.
 class MVCL_EXPORT ClipVolume {
 public:
     enum class Shape : uint8_t {
-        Box,       ///< axis-aligned box [boxMin, boxMax]
+        Box,       ///< box [boxMin, boxMax] in its own axes (boxAxes(); the scene's axes unless oriented)
         Sphere,    ///< ball of `radius` around `center`
         HalfSpace, ///< {p : dot(normal, p) ≥ offset}
     };
@@ -41,6 +45,10 @@ public:
     static ClipVolume box(const glm::vec3 &boxMin, const glm::vec3 &boxMax, Keep keep) {
         return {Shape::Box, keep, boxMin, boxMax, 0.f};
     }
+    /// A box turned about its centre: `axes` (columns, orthonormal) are its sides' directions
+    /// in scene space, `halfExtent` half its side lengths along them.
+    static ClipVolume orientedBox(const glm::vec3 &center, const glm::vec3 &halfExtent, const glm::mat3 &axes,
+                                  Keep keep);
     static ClipVolume sphere(const glm::vec3 &center, float radius, Keep keep) {
         return {Shape::Sphere, keep, center, glm::vec3(0.f), radius};
     }
@@ -53,33 +61,58 @@ public:
     Keep keep() const { return m_keep; }
     CapStyle capStyle() const { return m_capStyle; }
     void setCapStyle(CapStyle style) { m_capStyle = style; }
+    /// Bit i set: hits on layer i are subject to the volume (kAllLayers by default).
+    uint32_t layerMask() const { return m_layers; }
+    void setLayerMask(uint32_t mask) { m_layers = mask; }
+    bool appliesTo(uint32_t layer) const { return (m_layers >> layer) & 1u; }
+    /// Box: corners in the box's own axes (boxFromScene() * p for a scene point p).
     const glm::vec3 &boxMin() const { return m_point; }   ///< Box
     const glm::vec3 &boxMax() const { return m_second; }  ///< Box
+    bool isOriented() const { return m_oriented; }        ///< Box turned off the scene axes
+    /// Box: its axes in scene space (columns); the identity unless oriented.
+    glm::mat3 boxAxes() const { return glm::transpose(m_boxFromScene); }
+    const glm::mat3 &boxFromScene() const { return m_boxFromScene; }
     const glm::vec3 &center() const { return m_point; }   ///< Sphere
     float radius() const { return m_scalar; }             ///< Sphere
     const glm::vec3 &normal() const { return m_point; }   ///< HalfSpace
     float offset() const { return m_scalar; }             ///< HalfSpace
 
+    /// The same volume (axes, layers, caps) with other corners (Box) or another offset (HalfSpace).
+    ClipVolume withBox(const glm::vec3 &boxMin, const glm::vec3 &boxMax) const {
+        ClipVolume v = *this;
+        v.m_point = boxMin, v.m_second = boxMax;
+        return v;
+    }
+    ClipVolume withOffset(float offset) const {
+        ClipVolume v = *this;
+        v.m_scalar = offset;
+        return v;
+    }
+
     /// Every number finite, a box's min ≤ max per axis, a radius ≥ 0, a half-space's normal
     /// not zero: what Lens::commit() checks of every clip volume a lens contributes.
     bool isValid() const;
 
-    bool contains(const glm::vec3 &p) const {
+    bool contains(const glm::vec3 &scenePoint) const {
         switch (m_shape) {
-        case Shape::Box:
+        case Shape::Box: {
+            const glm::vec3 p = m_oriented ? m_boxFromScene * scenePoint : scenePoint;
             return p.x >= m_point.x && p.y >= m_point.y && p.z >= m_point.z && p.x <= m_second.x &&
                    p.y <= m_second.y && p.z <= m_second.z;
+        }
         case Shape::Sphere: {
-            const glm::vec3 d = p - m_point;
+            const glm::vec3 d = scenePoint - m_point;
             return d.x * d.x + d.y * d.y + d.z * d.z <= m_scalar * m_scalar;
         }
         case Shape::HalfSpace:
-            return m_point.x * p.x + m_point.y * p.y + m_point.z * p.z >= m_scalar;
+            return m_point.x * scenePoint.x + m_point.y * scenePoint.y + m_point.z * scenePoint.z >= m_scalar;
         }
         return false;
     }
-    /// True if a hit at p survives this volume.
-    bool accepts(const glm::vec3 &p) const { return contains(p) == (m_keep == Keep::Inside); }
+    /// True if a hit at p on `layer` survives this volume.
+    bool accepts(const glm::vec3 &p, uint32_t layer) const {
+        return !appliesTo(layer) || contains(p) == (m_keep == Keep::Inside);
+    }
 
     bool operator==(const ClipVolume &other) const = default;
 
@@ -90,6 +123,9 @@ private:
     Shape m_shape = Shape::Box;
     Keep m_keep = Keep::Outside;
     CapStyle m_capStyle = CapStyle::None;
+    bool m_oriented = false;
+    uint32_t m_layers = kAllLayers;
+    glm::mat3 m_boxFromScene{1.f}; // box: rows are its axes
     glm::vec3 m_point{0.f};  // box min, sphere centre, half-space normal
     glm::vec3 m_second{0.f}; // box max
     float m_scalar = 0.f;    // sphere radius, half-space offset
@@ -117,9 +153,10 @@ struct MVCL_EXPORT RayQuery {
     const ClipVolume &clip(int index) const { return m_clips[size_t(index)]; }
     std::span<const ClipVolume> clips() const { return {m_clips.data(), size_t(m_clipCount)}; }
 
-    bool acceptsPoint(const glm::vec3 &p) const {
+    /// A hit at p on `layer` survives every clip volume.
+    bool acceptsPoint(const glm::vec3 &p, uint32_t layer) const {
         for (int i = 0; i < m_clipCount; ++i)
-            if (!m_clips[size_t(i)].accepts(p)) return false;
+            if (!m_clips[size_t(i)].accepts(p, layer)) return false;
         return true;
     }
 

@@ -68,7 +68,9 @@ inline constexpr float kAlgebraTolerance = 1e-5f;
                                              int commits = 200);
 
 /// (i) the property table documents itself: a description, a doc sentence per property,
-/// unique lowerCamelCase names, defaults inside declared ranges, Int/Real bounded below.
+/// unique lowerCamelCase names, defaults inside declared ranges, Int/Real bounded below; a
+/// spaceFrom or usedWhen names a Choice of the lens and only values it offers, and spaceFrom
+/// maps every choice (the declared space being the default choice's).
 ::testing::AssertionResult checkDocumented(const LensFactory &create);
 
 /// (j) the context: a lens that does not declare LensInfo::dependsOnView contributes the same
