@@ -26,7 +26,15 @@ std::vector<std::string> ViewSetup::sources() const {
 
 ViewSetup ViewSetup::prepare(const ViewRequest &request, const LensRegistry &registry) {
     ViewSetup setup;
-    if (!request.sessionFile.empty()) setup.session = readLensStackFile(request.sessionFile, registry);
+    if (!request.sessionFile.empty()) {
+        setup.sessionFile = readSessionFile(request.sessionFile, registry);
+        const int views = int(setup.sessionFile->views.size());
+        if (request.sessionView < 0 || request.sessionView >= views)
+            throw Error(request.origin, "view " + std::to_string(request.sessionView) + " of " +
+                                            request.sessionFile.string() + ": the file has " + std::to_string(views) +
+                                            (views == 1 ? " view (0)" : " views (0.." + std::to_string(views - 1) + ")"));
+        setup.session = setup.sessionFile->view(request.sessionView);
+    }
     for (const std::string &spec : request.lensSpecs) {
         try { // a malformed value of the request is the request's error, not the file's
             setup.session.lenses.add(parseLensSpec(spec, registry));

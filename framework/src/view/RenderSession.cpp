@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "RenderSessionPrivate_p.h"
 
 #include <mvcl/core/Error.h>
@@ -44,6 +45,16 @@ void RenderSession::setCamera(const Camera &camera) {
 void RenderSession::setLensStack(const LensStack &stack) {
     std::lock_guard lock(d->stagedMutex);
     d->stagedLenses = stack.lenses();
+    d->stagedRightStart = -1;
+    d->edited();
+}
+
+void RenderSession::setLensStacks(const LensStack &left, const LensStack &right, float dividerX) {
+    std::lock_guard lock(d->stagedMutex);
+    d->stagedLenses = left.lenses();
+    d->stagedLenses.insert(d->stagedLenses.end(), right.lenses().begin(), right.lenses().end());
+    d->stagedRightStart = left.size();
+    d->stagedDivider = std::clamp(dividerX, 0.f, 1.f);
     d->edited();
 }
 
@@ -133,6 +144,14 @@ void RenderSession::stop() {
     }
     d->thread.join();
 }
+
+void RenderSession::setRefinementHeld(bool held) {
+    std::lock_guard lock(d->stagedMutex);
+    d->refinementHeld = held;
+    d->wake.notify_all();
+}
+
+bool RenderSession::isRefinementHeld() const { return d->refinementHeld.load(); }
 
 bool RenderSession::isRunning() const { return d->thread.joinable(); }
 
