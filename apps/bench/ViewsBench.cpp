@@ -18,6 +18,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <time.h>
 #include <unistd.h>
 #include <vector>
 
@@ -65,6 +66,14 @@ double residentMiB() {
     long pages = 0, resident = 0;
     statm >> pages >> resident;
     return double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
+
+/// CPU time of the whole process (every thread), in seconds: steadier than the wall clock on a
+/// machine shared with other work.
+double processCpuSeconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
 double median(std::vector<double> values) {
@@ -149,17 +158,23 @@ int runViewsBench(int argc, char **argv) {
         std::printf("drag    lens in view 0, view 1 idle: median %.2f ms per UI frame (%d frames of 8 px, input + passes)\n",
                     median(drag), o.frames);
 
-        // Orbit: view 0 alone, then both with linked cameras.
-        renderUntilIdle(document);
+        // Orbit: view 0 alone (view 1 unlinked, idle), then both with linked cameras; runs of
+        // each alternate, so that the load of other processes on a shared machine falls on both.
         const glm::vec2 empty(0.05f * float(o.width), 0.05f * float(o.height)); // outside the lens
-        const auto orbitOf = [&](int view) { return dragFrames(document, view, empty, {6.f, 2.f}, o.frames); };
-        // One view: the second is kept idle by linking nothing and orbiting view 0 only.
-        renderUntilIdle(document);
-        const double one = median(orbitOf(0));
-        document.link(0, 1, LinkAspect::Camera);
-        renderUntilIdle(document);
-        const double linked = median(orbitOf(0));
-        std::printf("orbit   one view %.2f ms, two linked views %.2f ms per UI frame: %.2fx\n", one, linked, linked / one);
+        std::vector<double> alone, linked;
+        double aloneCpu = 0.0, linkedCpu = 0.0;
+        for (int run = 0; run < 6; ++run) {
+            const bool link = run % 2 == 1;
+            if (link) document.link(0, 1, LinkAspect::Camera);
+            renderUntilIdle(document);
+            const double cpuStart = processCpuSeconds();
+            const std::vector<double> frames = dragFrames(document, 0, empty, {(run % 4 < 2 ? 6.f : -6.f), 2.f}, o.frames);
+            (link ? linkedCpu : aloneCpu) += processCpuSeconds() - cpuStart;
+            (link ? linked : alone).insert((link ? linked : alone).end(), frames.begin(), frames.end());
+            if (link) document.unlink(0, 1, LinkAspect::Camera);
+        }
+        std::printf("orbit   one view %.2f ms, two linked views %.2f ms per UI frame (median): %.2fx wall, %.2fx CPU time\n",
+                    median(alone), median(linked), median(linked) / median(alone), linkedCpu / aloneCpu);
         return 0;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "mvcl-bench views: %s\n", e.what());

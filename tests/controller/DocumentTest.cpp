@@ -15,8 +15,8 @@ namespace {
 
 class DocumentTest : public ControllerFixture {
 protected:
-    static std::unique_ptr<Document> makeDocument(int views = 2, const ViewRequest &request = cubeRequest()) {
-        auto document = std::make_unique<Document>(*registry, request, smallSettings());
+    static std::unique_ptr<Document> makeDocument(int views = 2, const RenderSettings &settings = smallSettings()) {
+        auto document = std::make_unique<Document>(*registry, cubeRequest(), settings);
         while (document->viewCount() < views) document->addView();
         // Side by side, as the viewer lays out "1x2": view i at x = i · kWidth.
         std::vector<ViewRect> rects;
@@ -294,6 +294,29 @@ TEST_F(DocumentTest, CompareDividerDragIsOneStepAndPressesPickTheSide) {
     view.setCompareEnabled(false);
     EXPECT_FALSE(view.state().compare.has_value());
     EXPECT_EQ(view.lensCount(), 1);
+}
+
+TEST_F(DocumentTest, TheFocusedViewRefinesFirstAndLinkedCamerasShareThePreviewBudget) {
+    RenderSettings settings = smallSettings();
+    settings.previewBudgetSeconds = 0.04;
+    auto document = makeDocument(2, settings);
+    document->setFocusedView(0);
+    document->updateRenderPriority(); // view 0 has everything to render
+    EXPECT_FALSE(document->view(0).renderSession().isRefinementHeld());
+    EXPECT_TRUE(document->view(1).renderSession().isRefinementHeld());
+    document->view(0).renderSession().renderUntilIdle();
+    document->updateRenderPriority();
+    EXPECT_FALSE(document->view(1).renderSession().isRefinementHeld());
+
+    const double budget = settings.previewBudgetSeconds;
+    document->link(0, 1, LinkAspect::Camera);
+    EXPECT_EQ(document->view(0).renderSettings().previewBudgetSeconds, budget / 2);
+    EXPECT_EQ(document->view(1).renderSettings().previewBudgetSeconds, budget / 2);
+    document->link(0, 1, LinkAspect::Lenses); // not a camera link: no change
+    document->unlink(0, 1, LinkAspect::Camera);
+    EXPECT_EQ(document->view(1).renderSettings().previewBudgetSeconds, budget);
+    document->undo(); // the camera link again
+    EXPECT_EQ(document->view(1).renderSettings().previewBudgetSeconds, budget / 2);
 }
 
 } // namespace

@@ -133,6 +133,28 @@ void Document::Private::copyAspect(int from, int to, LinkAspect aspect) {
     }
 }
 
+void Document::Private::sharePreviewBudget() {
+    const int count = int(views.size());
+    for (int i = 0; i < count; ++i) {
+        // The views reached from i through camera links, i included.
+        std::vector<bool> reached(views.size(), false);
+        reached[std::size_t(i)] = true;
+        for (bool grew = true; grew;) {
+            grew = false;
+            for (const ViewLink &link : links)
+                if (link.camera && link.b < count && reached[std::size_t(link.a)] != reached[std::size_t(link.b)]) {
+                    reached[std::size_t(link.a)] = reached[std::size_t(link.b)] = true;
+                    grew = true;
+                }
+        }
+        const double share = settings.previewBudgetSeconds / double(std::ranges::count(reached, true));
+        RenderSettings viewSettings = views[std::size_t(i)]->renderSettings();
+        if (viewSettings.previewBudgetSeconds == share) continue;
+        viewSettings.previewBudgetSeconds = share;
+        views[std::size_t(i)]->setRenderSettings(viewSettings);
+    }
+}
+
 DocumentState Document::Private::state() const {
     DocumentState s;
     for (std::size_t i = 0; i < views.size(); ++i) s.views.push_back(viewOf(int(i)).captureState());
@@ -160,6 +182,7 @@ void Document::Private::restore(const Step &step) {
     links.clear();
     for (const ViewLink &link : step.state.links)
         if (link.b < int(views.size())) links.push_back(link);
+    sharePreviewBudget();
     if (step.view < int(views.size())) router.setFocus(step.view);
 }
 
@@ -252,6 +275,7 @@ Document::Document(const LensRegistry &registry, const ViewRequest &request, con
         d->links = file->links;
         d->layout = file->layout;
         d->router.setFocus(file->focus);
+        d->sharePreviewBudget();
     }
     if (!request.sessionFile.empty()) d->sessionPath = request.sessionFile;
 }
@@ -344,6 +368,7 @@ void Document::link(int a, int b, LinkAspect aspect) {
         existing->set(aspect, true);
         d->viewChanged(from, aspect);
     });
+    d->sharePreviewBudget();
 }
 
 void Document::unlink(int a, int b, LinkAspect aspect) {
@@ -353,6 +378,7 @@ void Document::unlink(int a, int b, LinkAspect aspect) {
             if (link.joins(a, b)) link.set(aspect, false);
         std::erase_if(d->links, [](const ViewLink &link) { return link.isEmpty(); });
     });
+    d->sharePreviewBudget();
 }
 
 // --- input ------------------------------------------------------------------------------------------
@@ -509,6 +535,7 @@ void Document::loadSession(const std::filesystem::path &file) {
     d->links = described.links;
     d->layout = described.layout;
     d->router.setFocus(described.focus);
+    d->sharePreviewBudget();
     d->sessionPath = file;
     d->clearHistory();
     d->writeRecovery();

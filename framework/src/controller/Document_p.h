@@ -73,6 +73,10 @@ struct Document::Private {
     /// Copies `aspect` of view `from` to every view reached through links of that aspect.
     void viewChanged(int from, LinkAspect aspect);
     void copyAspect(int from, int to, LinkAspect aspect);
+    /// Views whose cameras are linked move together, so they share one UI frame's preview
+    /// budget: each gets the app's budget divided by the views it moves with. Called whenever
+    /// the links change.
+    void sharePreviewBudget();
 
     // --- history ---
     DocumentState state() const;
