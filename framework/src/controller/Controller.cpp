@@ -11,27 +11,6 @@
 
 namespace mvcl {
 
-namespace {
-
-bool sameRules(const LayerRules &a, const LayerRules &b) {
-    return std::ranges::equal(a.rules(), b.rules(), [](const LayerRule &x, const LayerRule &y) {
-        return x.pattern == y.pattern && x.layer == y.layer && x.name == y.name;
-    });
-}
-
-/// The same scene source: equal text, or two names of one model file.
-bool sameSource(const std::string &a, const std::string &b) {
-    if (a == b) return true;
-    if (a.starts_with("builtin:") || b.starts_with("builtin:")) return false;
-    std::error_code ec;
-    return std::filesystem::equivalent(a, b, ec);
-}
-
-bool sameSources(const std::vector<std::string> &a, const std::vector<std::string> &b) {
-    return std::ranges::equal(a, b, sameSource);
-}
-
-} // namespace
 
 // --- Private helpers ---------------------------------------------------------------------------
 
@@ -297,9 +276,7 @@ void Controller::loadSession(const std::filesystem::path &file) {
     request.loadOptions.layerRules = {};
     request.loadOptions.layerContact = {}; // the file's contact tolerance, like its rules
     ViewSetup setup = ViewSetup::prepare(request, d->registry);
-    const bool sameScene = sameSources(setup.sources(), d->setup.sources()) &&
-                           sameRules(setup.loadOptions.layerRules, d->setup.loadOptions.layerRules) &&
-                           setup.loadOptions.layerContact == d->setup.loadOptions.layerContact;
+    const bool sameScene = setup.loadsSameScene(d->setup);
     std::shared_ptr<const Scene> scene;
     std::shared_ptr<const Tracer> tracer;
     if (!sameScene) {

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cctype>
 #include <deque>
-#include <system_error>
 
 namespace mvcl {
 
@@ -16,22 +15,6 @@ namespace {
 constexpr LinkAspect kAspects[] = {LinkAspect::Camera, LinkAspect::Lenses, LinkAspect::Layers};
 
 float aspectOf(const glm::ivec2 &size) { return float(std::max(size.x, 1)) / float(std::max(size.y, 1)); }
-
-bool sameSource(const std::string &a, const std::string &b) {
-    if (a == b) return true;
-    if (a.starts_with("builtin:") || b.starts_with("builtin:")) return false;
-    std::error_code ec;
-    return std::filesystem::equivalent(a, b, ec);
-}
-
-bool sameScene(const ViewSetup &a, const ViewSetup &b) {
-    const auto sameRule = [](const LayerRule &x, const LayerRule &y) {
-        return x.pattern == y.pattern && x.layer == y.layer && x.name == y.name;
-    };
-    return std::ranges::equal(a.sources(), b.sources(), sameSource) &&
-           std::ranges::equal(a.loadOptions.layerRules.rules(), b.loadOptions.layerRules.rules(), sameRule) &&
-           a.loadOptions.layerContact == b.loadOptions.layerContact;
-}
 
 /// A file's view camera: its own (or a scene camera it names), else a framing.
 Camera fileViewCamera(const ViewSetup &setup, const SessionDescription &file, int view, const Scene &scene,
@@ -485,7 +468,7 @@ void Document::loadSession(const std::filesystem::path &file) {
     request.loadOptions.layerContact = {};
     ViewSetup setup = ViewSetup::prepare(request, d->registry);
     const SessionDescription &sessionFile = *setup.sessionFile;
-    const bool keepScene = sameScene(setup, d->setup);
+    const bool keepScene = setup.loadsSameScene(d->setup);
     std::shared_ptr<const Scene> scene = d->scene;
     std::shared_ptr<const Tracer> tracer = d->tracer;
     if (!keepScene) {

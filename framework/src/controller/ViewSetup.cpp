@@ -4,6 +4,10 @@
 #include <mvcl/core/Error.h>
 #include <mvcl/lens/LensRegistry.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <system_error>
+
 namespace mvcl {
 
 namespace {
@@ -16,7 +20,24 @@ const CameraDesc *findSceneCamera(const Scene &scene, const std::string &name) {
     return found;
 }
 
+/// The same scene source: equal text, or two names of one model file.
+bool sameSource(const std::string &a, const std::string &b) {
+    if (a == b) return true;
+    if (a.starts_with("builtin:") || b.starts_with("builtin:")) return false;
+    std::error_code ec;
+    return std::filesystem::equivalent(a, b, ec);
+}
+
 } // namespace
+
+bool ViewSetup::loadsSameScene(const ViewSetup &other) const {
+    const auto sameRule = [](const LayerRule &x, const LayerRule &y) {
+        return x.pattern == y.pattern && x.layer == y.layer && x.name == y.name;
+    };
+    return std::ranges::equal(sources(), other.sources(), sameSource) &&
+           std::ranges::equal(loadOptions.layerRules.rules(), other.loadOptions.layerRules.rules(), sameRule) &&
+           loadOptions.layerContact == other.loadOptions.layerContact;
+}
 
 std::vector<std::string> ViewSetup::sources() const {
     std::vector<std::string> all{source};

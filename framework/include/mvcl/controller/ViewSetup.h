@@ -63,6 +63,10 @@ struct MVCL_EXPORT ViewSetup {
     /// The same with the session's own lenses and visible layers.
     LensStackDescription describe(const Scene &scene, const Camera &camera) const;
 
+    /// The same scene as `other` would load: the same files (two names of one file count as
+    /// one), layer rules and contact tolerance. Loading a session keeps the scene then.
+    bool loadsSameScene(const ViewSetup &other) const;
+
     /// The field of view a framed view uses when nobody gives one.
     static constexpr float kDefaultVerticalFovDegrees = 40.f;
 };
