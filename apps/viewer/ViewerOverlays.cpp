@@ -66,59 +66,65 @@ void Viewer::drawLensOverlays() {
 void Viewer::drawViewOverlays(const Controller &view, const glm::vec2 &origin, const glm::vec2 &size) {
     ImDrawList *draw = ImGui::GetBackgroundDrawList();
     const auto screenOf = [&](const glm::vec2 &normalized) { return origin + normalized * size; };
-    // In compare mode the stack being edited is drawn on its side of the divider only.
-    glm::vec2 clipMin = origin, clipMax = origin + size;
-    if (view.isCompareEnabled()) {
-        const float divider = origin.x + view.compareDivider() * size.x;
-        (view.compareSide() == CompareSide::Left ? clipMax.x : clipMin.x) = divider;
-    }
-    draw->PushClipRect(ImVec2(clipMin.x, clipMin.y), ImVec2(clipMax.x, clipMax.y), true);
-    const LensStack &stack = view.lensStack();
     const float thickness = 1.5f * m_contentScale;
-    for (int i = 0; i < stack.size(); ++i) {
-        const Lens &lens = *stack.lens(i);
-        const LensRegion &region = lens.region();
-        const bool selected = i == view.selectedLens();
-        const ImU32 color = lens.isEnabled() ? colorOf(selected ? glm::vec3(1.f, 0.85f, 0.2f) : glm::vec3(0.9f), selected ? 1.f : 0.6f)
-                                             : colorOf(glm::vec3(0.5f), 0.5f);
-        const glm::vec2 c = screenOf(region.center());
-        const glm::vec2 half = 0.5f * region.size() * size;
-        switch (region.shape()) {
-        case LensRegion::Shape::Rectangle:
-            draw->AddRect(ImVec2(c.x - half.x, c.y - half.y), ImVec2(c.x + half.x, c.y + half.y), color, 0.f, 0, thickness);
-            break;
-        case LensRegion::Shape::Ellipse: {
-            constexpr int kSegments = 96;
-            ImVec2 points[kSegments];
-            for (int k = 0; k < kSegments; ++k) {
-                const float a = 6.2831853f * float(k) / float(kSegments);
-                points[k] = ImVec2(c.x + half.x * std::cos(a), c.y + half.y * std::sin(a));
+    // One stack's outlines within [clipMin, clipMax); the stack being edited with labels, the
+    // selected lens bright with its handles; the other side of a compare divider dimmed.
+    const auto drawStack = [&](const LensStack &stack, bool edited, const glm::vec2 &clipMin, const glm::vec2 &clipMax) {
+        draw->PushClipRect(ImVec2(clipMin.x, clipMin.y), ImVec2(clipMax.x, clipMax.y), true);
+        for (int i = 0; i < stack.size(); ++i) {
+            const Lens &lens = *stack.lens(i);
+            const LensRegion &region = lens.region();
+            const bool selected = edited && i == view.selectedLens();
+            const ImU32 color = !edited          ? colorOf(glm::vec3(0.7f), 0.35f)
+                                : lens.isEnabled() ? colorOf(selected ? glm::vec3(1.f, 0.85f, 0.2f) : glm::vec3(0.9f), selected ? 1.f : 0.6f)
+                                                   : colorOf(glm::vec3(0.5f), 0.5f);
+            const glm::vec2 c = screenOf(region.center());
+            const glm::vec2 half = 0.5f * region.size() * size;
+            switch (region.shape()) {
+            case LensRegion::Shape::Rectangle:
+                draw->AddRect(ImVec2(c.x - half.x, c.y - half.y), ImVec2(c.x + half.x, c.y + half.y), color, 0.f, 0, thickness);
+                break;
+            case LensRegion::Shape::Ellipse: {
+                constexpr int kSegments = 96;
+                ImVec2 points[kSegments];
+                for (int k = 0; k < kSegments; ++k) {
+                    const float a = 6.2831853f * float(k) / float(kSegments);
+                    points[k] = ImVec2(c.x + half.x * std::cos(a), c.y + half.y * std::sin(a));
+                }
+                draw->AddPolyline(points, kSegments, color, ImDrawFlags_Closed, thickness);
+                break;
             }
-            draw->AddPolyline(points, kSegments, color, ImDrawFlags_Closed, thickness);
-            break;
-        }
-        case LensRegion::Shape::Polygon: {
-            std::vector<ImVec2> points;
-            for (const glm::vec2 &p : region.points()) {
-                const glm::vec2 s = screenOf(p);
-                points.emplace_back(s.x, s.y);
+            case LensRegion::Shape::Polygon: {
+                std::vector<ImVec2> points;
+                for (const glm::vec2 &p : region.points()) {
+                    const glm::vec2 s = screenOf(p);
+                    points.emplace_back(s.x, s.y);
+                }
+                if (points.size() >= 2) draw->AddPolyline(points.data(), int(points.size()), color, ImDrawFlags_Closed, thickness);
+                break;
             }
-            if (points.size() >= 2) draw->AddPolyline(points.data(), int(points.size()), color, ImDrawFlags_Closed, thickness);
-            break;
+            }
+            if (!edited) continue;
+            const std::string label = lens.label().empty() ? lens.typeName() : lens.label();
+            draw->AddText(ImVec2(c.x - half.x + 4.f, c.y - half.y + 2.f), color, label.c_str());
+            if (!selected) continue;
+            for (const LensHandle &handle : view.lensHandles(i)) {
+                const glm::vec2 h = screenOf(handle.position);
+                const float r = 4.f * m_contentScale;
+                draw->AddRectFilled(ImVec2(h.x - r, h.y - r), ImVec2(h.x + r, h.y + r), color);
+            }
         }
-        }
-        const std::string label = lens.label().empty() ? lens.typeName() : lens.label();
-        draw->AddText(ImVec2(c.x - half.x + 4.f, c.y - half.y + 2.f), color, label.c_str());
-        if (!selected) continue;
-        for (const LensHandle &handle : view.lensHandles(i)) {
-            const glm::vec2 h = screenOf(handle.position);
-            const float r = 4.f * m_contentScale;
-            draw->AddRectFilled(ImVec2(h.x - r, h.y - r), ImVec2(h.x + r, h.y + r), color);
-        }
+        draw->PopClipRect();
+    };
+    if (!view.isCompareEnabled()) {
+        drawStack(view.lensStack(), true, origin, origin + size);
+        return;
     }
-    draw->PopClipRect();
-    if (view.isCompareEnabled()) { // the divider, with a grip in the middle to show it can be dragged
-        const float x = origin.x + view.compareDivider() * size.x;
+    const float x = origin.x + view.compareDivider() * size.x;
+    const bool leftEdited = view.compareSide() == CompareSide::Left;
+    drawStack(view.leftLensStack(), leftEdited, origin, {x, origin.y + size.y});
+    drawStack(view.rightLensStack(), !leftEdited, {x, origin.y}, origin + size);
+    { // the divider, with a grip in the middle to show it can be dragged
         const ImU32 white = IM_COL32(255, 255, 255, 230);
         draw->AddLine(ImVec2(x, origin.y), ImVec2(x, origin.y + size.y), white, 2.f * m_contentScale);
         const float grip = 6.f * m_contentScale, middle = origin.y + 0.5f * size.y;
