@@ -230,6 +230,34 @@ TEST_F(DocumentTest, LinksSurviveASessionRoundTripAndAModelReload) {
     EXPECT_EQ(reopened->view(0).state().lenses, reopened->view(1).state().lenses);
 }
 
+TEST_F(DocumentTest, ALayersLinkHoldsBothWaysAfterASessionRoundTripAndAModelReload) {
+    const std::filesystem::path folder = scratchFolder();
+    auto document = makeDocument(2);
+    document->setFocusedView(1);
+    document->view(1).setLayerVisibility(2, LayerVisibility::Hidden);
+    document->link(0, 1, LinkAspect::Layers); // from the focused view 1
+    EXPECT_EQ(document->view(0).layerVisibility(2), LayerVisibility::Hidden);
+    document->saveSession(folder / "layers.json");
+
+    auto reopened = makeDocument(1);
+    reopened->loadSession(folder / "layers.json");
+    ASSERT_EQ(reopened->viewCount(), 2);
+    EXPECT_EQ(reopened->focusedView(), 1);
+    reopened->view(0).setLayerVisibility(0, LayerVisibility::Hidden);
+    EXPECT_EQ(reopened->view(1).visibleLayers(), reopened->view(0).visibleLayers());
+    reopened->openScenes({"builtin:cube-in-cube"}); // every layer visible again, then the link
+    EXPECT_EQ(reopened->view(0).visibleLayers(), kAllLayers);
+    reopened->view(1).setLayerVisibility(1, LayerVisibility::Hidden);
+    EXPECT_EQ(reopened->view(0).layerVisibility(1), LayerVisibility::Hidden);
+    reopened->view(0).setLayerVisibility(1, LayerVisibility::Visible);
+    EXPECT_EQ(reopened->view(1).layerVisibility(1), LayerVisibility::Visible);
+    // A session loaded into the document replaces its links too.
+    reopened->unlink(0, 1, LinkAspect::Layers);
+    reopened->loadSession(folder / "layers.json");
+    EXPECT_TRUE(reopened->isLinked(0, 1, LinkAspect::Layers));
+    EXPECT_FALSE(reopened->canUndo());
+}
+
 TEST_F(DocumentTest, AOneViewSessionIsWrittenAsVersionOneByteForByte) {
     const std::filesystem::path folder = scratchFolder();
     auto controller = makeController();
@@ -286,6 +314,15 @@ TEST_F(DocumentTest, CompareDividerDragIsOneStepAndPressesPickTheSide) {
     view.removeLens(0);
     EXPECT_EQ(view.state().lenses.size(), 1u);
     EXPECT_TRUE(view.state().compare->lenses.empty());
+
+    // The divider and both stacks are part of the session.
+    const std::filesystem::path file = scratchFolder() / "compare.json";
+    document->saveSession(file);
+    ViewRequest request;
+    request.sessionFile = file;
+    const Document reopened(*registry, request, smallSettings());
+    EXPECT_EQ(reopened.state(), document->state());
+    EXPECT_TRUE(reopened.view(0).isCompareEnabled());
 
     document->undo(); // the removal
     EXPECT_EQ(view.state().compare->lenses.size(), 1u);
