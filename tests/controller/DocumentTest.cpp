@@ -258,6 +258,20 @@ TEST_F(DocumentTest, ALayersLinkHoldsBothWaysAfterASessionRoundTripAndAModelRelo
     EXPECT_FALSE(reopened->canUndo());
 }
 
+TEST_F(DocumentTest, ASessionWhoseLayoutHasMoreCellsThanViewsGetsItsViewsFilledIn) {
+    const std::filesystem::path file = scratchFolder() / "grid.json";
+    std::ofstream(file) << R"({"version": 2, "scene": "builtin:cube-in-cube", "layout": "2x2", "focus": 1,
+        "views": [{"visibleLayers": "1-"}, {"lenses": [{"type": "layer"}]}]})";
+    ViewRequest request;
+    request.sessionFile = file;
+    const Document document(*registry, request, smallSettings());
+    ASSERT_EQ(document.viewCount(), 4);
+    EXPECT_EQ(document.shownViews(), (std::vector<int>{0, 1, 2, 3}));
+    // The added views are copies of the focused view 1.
+    EXPECT_EQ(document.view(2).state(), document.view(1).state());
+    EXPECT_EQ(document.view(0).visibleLayers(), ~uint32_t(1));
+}
+
 TEST_F(DocumentTest, AOneViewSessionIsWrittenAsVersionOneByteForByte) {
     const std::filesystem::path folder = scratchFolder();
     auto controller = makeController();

@@ -59,6 +59,12 @@ void Document::Private::setView(int index, const Camera &camera, uint32_t visibl
     --linksMuted;
 }
 
+void Document::Private::fillLayout() {
+    while (int(views.size()) < viewGridOf(layout).cellCount()) owner.addView();
+    const std::vector<int> shown = owner.shownViews();
+    if (std::ranges::find(shown, focus()) == shown.end()) router.setFocus(shown.front());
+}
+
 void Document::Private::viewsChanged() {
     if (viewsChangedCallback) viewsChangedCallback();
 }
@@ -258,6 +264,7 @@ Document::Document(const LensRegistry &registry, const ViewRequest &request, con
         d->links = file->links;
         d->layout = file->layout;
         d->router.setFocus(file->focus);
+        d->fillLayout();
         d->sharePreviewBudget();
     }
     if (!request.sessionFile.empty()) d->sessionPath = request.sessionFile;
@@ -314,9 +321,7 @@ ViewLayout Document::layout() const { return d->layout; }
 
 void Document::setLayout(ViewLayout layout) {
     d->layout = layout;
-    while (viewCount() < viewGridOf(layout).cellCount()) addView();
-    const std::vector<int> shown = shownViews();
-    if (std::ranges::find(shown, focusedView()) == shown.end()) setFocusedView(shown.front());
+    d->fillLayout();
     d->writeRecovery();
 }
 
@@ -518,6 +523,7 @@ void Document::loadSession(const std::filesystem::path &file) {
     d->links = described.links;
     d->layout = described.layout;
     d->router.setFocus(described.focus);
+    d->fillLayout();
     d->sharePreviewBudget();
     d->sessionPath = file;
     d->clearHistory();

@@ -68,6 +68,9 @@ struct Document::Private {
     void setView(int index, const Camera &camera, uint32_t visibleLayers, const LensStack &lenses,
                  const std::optional<CompareDescription> &compare);
     void viewsChanged();
+    /// Adds views (copies of the focused one) until the layout's cells are filled, and moves
+    /// the focus to a shown view.
+    void fillLayout();
 
     // --- links ---
     /// Copies `aspect` of view `from` to every view reached through links of that aspect.

@@ -85,7 +85,8 @@ public:
 
     // --- layout -------------------------------------------------------------------------------------
     ViewLayout layout() const;
-    /// Adds views (addView) until the layout's cells are filled; views beyond them are kept.
+    /// Adds views (addView) until the layout's cells are filled (also when a session is read);
+    /// views beyond them are kept. The focus moves to a shown view.
     void setLayout(ViewLayout layout);
     /// The views the layout shows, one per cell in row-major order: views 0..cells-1, or the
     /// focused view alone in layout "1".
