@@ -108,6 +108,32 @@ TEST(CompareRenderTest, MovingTheDividerEightPixelsReTracesOnlyThePixelsItPasses
     EXPECT_GT(session.renderPass().pixelsRestarted, 0u);
 }
 
+TEST(CompareRenderTest, AnEditOfOneSidesStackReTracesOnlyThatSide) {
+    const Scene scene = loadScene("builtin:cube-in-cube");
+    const Tracer tracer(scene);
+    const RenderSettings settings = settingsOf(200, 100);
+    const LensStack left = revealStack(), right = revealStack(); // the same lens on both sides
+    RenderSession session(tracer);
+    session.setSettings(settings);
+    session.setCamera(Camera::fromDesc(scene.cameras.front()));
+    session.setLensStacks(left, right, 0.5f);
+    const Framebuffer before = renderedImage(session);
+
+    // The right side's lens shrinks to the middle: its left half, under the divider, is hidden.
+    LensRegion smaller = right.lens(0)->region();
+    smaller.setSize({0.5f, 0.5f});
+    right.lens(0)->setRegion(smaller);
+    right.lens(0)->commit();
+    session.setLensStacks(left, right, 0.5f);
+    const RenderPassStats pass = session.renderPass();
+    EXPECT_EQ(pass.kind, PassKind::Retrace);
+    EXPECT_GT(pass.pixelsRestarted, 0u);
+    EXPECT_LT(pass.pixelsRestarted, 100u * 100u); // within the right half
+    session.renderUntilIdle();
+    for (int y = 0; y < settings.height; ++y)
+        for (int x = 0; x < 100; ++x) ASSERT_EQ(session.image().at(x, y), before.at(x, y)) << x << "," << y;
+}
+
 TEST(CompareRenderTest, SpliceTakesColumnsFromEachMapAndShiftsTheRightLensSets) {
     PolicyMap left(4, 2, RayPolicy{});
     PixelPolicy lensed;
