@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <deque>
 
 namespace mvcl {
 
@@ -69,25 +68,22 @@ void Document::Private::viewsChanged() {
     if (viewsChangedCallback) viewsChangedCallback();
 }
 
+std::vector<int> Document::Private::linkedViews(int from, LinkAspect aspect) const {
+    std::vector<int> reached{from};
+    for (std::size_t next = 0; next < reached.size(); ++next) // breadth first
+        for (const ViewLink &link : links) {
+            if (!link.has(aspect) || (link.a != reached[next] && link.b != reached[next])) continue;
+            const int other = link.a == reached[next] ? link.b : link.a;
+            if (other < int(views.size()) && std::ranges::find(reached, other) == reached.end()) reached.push_back(other);
+        }
+    return reached;
+}
+
 void Document::Private::viewChanged(int from, LinkAspect aspect) {
     if (linksMuted > 0 || links.empty()) return;
     ++linksMuted;
-    // Breadth first through the links of this aspect: each reached view gets the source's value.
-    std::vector<bool> reached(views.size(), false);
-    reached[std::size_t(from)] = true;
-    std::deque<int> queue{from};
-    while (!queue.empty()) {
-        const int at = queue.front();
-        queue.pop_front();
-        for (const ViewLink &link : links) {
-            if (!link.has(aspect) || (link.a != at && link.b != at)) continue;
-            const int other = link.a == at ? link.b : link.a;
-            if (other >= int(views.size()) || reached[std::size_t(other)]) continue;
-            reached[std::size_t(other)] = true;
-            copyAspect(from, other, aspect);
-            queue.push_back(other);
-        }
-    }
+    const std::vector<int> linked = linkedViews(from, aspect);
+    for (std::size_t i = 1; i < linked.size(); ++i) copyAspect(from, linked[i], aspect);
     --linksMuted;
 }
 
@@ -123,20 +119,8 @@ void Document::Private::copyAspect(int from, int to, LinkAspect aspect) {
 }
 
 void Document::Private::sharePreviewBudget() {
-    const int count = int(views.size());
-    for (int i = 0; i < count; ++i) {
-        // The views reached from i through camera links, i included.
-        std::vector<bool> reached(views.size(), false);
-        reached[std::size_t(i)] = true;
-        for (bool grew = true; grew;) {
-            grew = false;
-            for (const ViewLink &link : links)
-                if (link.camera && link.b < count && reached[std::size_t(link.a)] != reached[std::size_t(link.b)]) {
-                    reached[std::size_t(link.a)] = reached[std::size_t(link.b)] = true;
-                    grew = true;
-                }
-        }
-        const double share = settings.previewBudgetSeconds / double(std::ranges::count(reached, true));
+    for (int i = 0; i < int(views.size()); ++i) {
+        const double share = settings.previewBudgetSeconds / double(linkedViews(i, LinkAspect::Camera).size());
         RenderSettings viewSettings = views[std::size_t(i)]->renderSettings();
         if (viewSettings.previewBudgetSeconds == share) continue;
         viewSettings.previewBudgetSeconds = share;

@@ -73,6 +73,8 @@ struct Document::Private {
     void fillLayout();
 
     // --- links ---
+    /// `from` and the views reached from it through links of `aspect`, breadth first.
+    std::vector<int> linkedViews(int from, LinkAspect aspect) const;
     /// Copies `aspect` of view `from` to every view reached through links of that aspect.
     void viewChanged(int from, LinkAspect aspect);
     void copyAspect(int from, int to, LinkAspect aspect);
