@@ -393,7 +393,7 @@ bool Document::handle(const InputEvent &event) {
             target.setCompareDivider(position.x / float(target.viewSize().x));
             return true;
         }
-        if (event.type == InputEvent::Type::PointerRelease) {
+        if (event.type == InputEvent::Type::PointerRelease && event.button == PointerButton::Left) {
             d->dividerView = -1;
             d->endEditStep();
             return true;
