@@ -69,7 +69,7 @@ private:
     void writeScreenshot(const std::string &file);
     void saveSession(const std::string &file);
     void openFile(const std::string &file);
-    // ViewerViews.cpp
+    // ViewerViews.cpp (drawViewOverlays is in ViewerOverlays.cpp)
     /// Places the shown views in the image area (the layout's grid) and tells the document.
     void layoutViews();
     /// The focused view again (after a press, undo, a layout change, a session load).
@@ -82,7 +82,6 @@ private:
     /// One view's lens outlines, handles and compare divider, clipped to the view: everything
     /// drawn for a view is a function of its controller and its place on screen.
     void drawViewOverlays(const Controller &view, const glm::vec2 &origin, const glm::vec2 &size);
-    void drawViewsPanel();
     // ViewerOverlays.cpp
     void drawImage();
     void drawLensOverlays();
@@ -90,6 +89,8 @@ private:
     void drawMessages();
     // ViewerPanels.cpp
     void drawPanels();
+    /// Layout, links of the focused view, compare mode.
+    void drawViewsPanel();
     void drawLensStackPanel();
     void drawLensPanel();
     void drawLayersPanel();
