@@ -163,6 +163,7 @@ void Controller::Private::replaceScene(std::shared_ptr<const Scene> newScene, st
     const bool wasRunning = session && session->isRunning();
     auto newSession = std::make_unique<RenderSession>(*newTracer);
     newSession->setSettings(sessionSettings());
+    if (document) newSession->setPassGate(document->passGate); // the views take turns on the cores
     if (session) session->stop();
     // The old session renders with the old tracer, which points into the old scene.
     session = std::move(newSession);

@@ -36,6 +36,8 @@ struct Document::Private {
     std::shared_ptr<const Tracer> tracer;
     RenderSettings settings;
     std::vector<std::unique_ptr<Controller>> views;
+    /// The views' sessions run their passes one at a time on the worker pool.
+    std::shared_ptr<RenderPassGate> passGate = RenderSession::makePassGate();
 
     std::vector<ViewLink> links;
     ViewLayout layout = ViewLayout::Single;

@@ -1,10 +1,12 @@
-#include <algorithm>
 #include "RenderSessionPrivate_p.h"
 
 #include <mvcl/core/Error.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 
 namespace mvcl {
 
@@ -129,7 +131,22 @@ void RenderSession::start() {
                 d->wake.wait(lock, [this] { return d->stopping.load() || d->hasWorkLocked(); });
                 if (d->stopping) return;
             }
-            d->renderPass();
+            if (!d->gate) {
+                d->renderPass();
+                continue;
+            }
+            bool preempted = false;
+            {
+                std::lock_guard gateLock(d->gate->mutex);
+                d->gate->running = &d->seat;
+                preempted = d->renderPass().wasCancelled && d->seat.refining.load();
+                d->seat.refining = false;
+                d->gate->running = nullptr;
+            }
+            // Let a session waiting at the gate take it before this one takes it again; first of
+            // all the one whose edit cancelled this refinement.
+            if (preempted) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            else std::this_thread::yield();
         }
     });
 }
@@ -144,6 +161,10 @@ void RenderSession::stop() {
     }
     d->thread.join();
 }
+
+void RenderSession::setPassGate(std::shared_ptr<RenderPassGate> gate) { d->gate = std::move(gate); }
+
+std::shared_ptr<RenderPassGate> RenderSession::makePassGate() { return std::make_shared<RenderPassGate>(); }
 
 void RenderSession::setRefinementHeld(bool held) {
     std::lock_guard lock(d->stagedMutex);

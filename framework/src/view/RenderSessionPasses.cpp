@@ -556,6 +556,8 @@ RenderPassStats RenderSession::Private::renderPass() {
         updateActive({0, 0, width(), height()});
     }
     initialised = true;
+    // A pass that only adds samples: another session's edit may cancel it (RenderPassGate).
+    seat.refining = !restartAll && !cameraMoved && !lensesChanged && !budgetChanged && !fullPassPending;
 
     // 3. Preview while the camera moves, else trace.
     const int divider = cameraMoved ? previewDivider() : 1;

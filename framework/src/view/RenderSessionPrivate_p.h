@@ -53,6 +53,17 @@ inline bool sameCamera(const Camera &a, const Camera &b) {
 
 } // namespace detail
 
+/// What sessions sharing a gate know of each other: who runs a pass, and whether that pass only
+/// refines (then another session's edit cancels it).
+struct RenderPassGate {
+    struct Seat {
+        std::atomic<bool> *cancel = nullptr;
+        std::atomic<bool> refining{false};
+    };
+    std::mutex mutex;
+    std::atomic<Seat *> running{nullptr};
+};
+
 struct RenderSession::Private {
     using Clock = detail::Clock;
 
@@ -83,6 +94,8 @@ struct RenderSession::Private {
     /// "no work" means the display shows everything.
     std::atomic<bool> passRunning{false};
     std::atomic<bool> refinementHeld{false};
+    std::shared_ptr<RenderPassGate> gate; ///< set before start(); may be null
+    RenderPassGate::Seat seat{&cancel};
     /// The image is complete at full resolution: what is left is refinement (set by passes).
     std::atomic<bool> onlyRefinementLeft{false};
 
@@ -163,6 +176,10 @@ struct RenderSession::Private {
     void edited() {
         ++editCount;
         cancel.store(true, std::memory_order_relaxed);
+        // Refinement of another session sharing the gate yields to this edit.
+        if (gate)
+            if (RenderPassGate::Seat *other = gate->running.load(); other && other != &seat && other->refining.load())
+                other->cancel->store(true, std::memory_order_relaxed);
         wake.notify_all();
     }
     bool hasWorkLocked() const;

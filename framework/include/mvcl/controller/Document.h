@@ -22,7 +22,9 @@
 ///   view keeps them until release), keys to the focused view; a press focuses its view. In a
 ///   view in compare mode a press on the divider drags it, and a press elsewhere edits the
 ///   stack of that side;
-/// - render priority: updateRenderPriority() lets the focused view refine first, and views
+/// - render priority: the views' sessions take turns on the worker pool (one RenderPassGate,
+///   an edit preempting another view's refinement), updateRenderPriority() lets the focused
+///   view refine first, and views
 ///   with linked cameras, which move together, share one frame's preview budget
 ///   (RenderSettings::previewBudgetSeconds divided among them).
 ///

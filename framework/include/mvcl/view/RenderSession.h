@@ -41,6 +41,7 @@ namespace mvcl {
 
 class PolicyMap;
 class Tracer;
+struct RenderPassGate;
 
 /// What a pass did.
 enum class PassKind : uint8_t {
@@ -141,6 +142,13 @@ public:
     /// them (the focused view of several) refine first.
     void setRefinementHeld(bool held);
     bool isRefinementHeld() const;
+    /// Sessions given one gate (makePassGate()) run their background passes one at a time, so
+    /// that together they keep to the worker pool's threads instead of each adding a thread of
+    /// its own (the views of a Document share one). An edit of one session cancels another's
+    /// pass that only refines (its finished pixels are kept; it runs again afterwards), so edits
+    /// do not wait behind refinement. Set it before start().
+    void setPassGate(std::shared_ptr<RenderPassGate> gate);
+    static std::shared_ptr<RenderPassGate> makePassGate();
     /// Stats of the last finished pass (any thread).
     RenderPassStats lastPass() const;
     /// Number of passes finished since construction (any thread).
