@@ -21,6 +21,7 @@
 #include "ConvergenceBench.h"
 #include "FrameBench.h"
 #include "LoadBench.h"
+#include "ViewsBench.h"
 #include "PovBench.h"
 
 #include <mvcl/core/WorkerPool.h>
@@ -95,6 +96,7 @@ std::optional<Options> parseOptions(int argc, char **argv) {
         "                  [--embree-config OPTIONS] [--layers]"));
     app.footer("Other modes (each with its own --help):\n"
                "  mvcl-bench convergence ...     error against run time of the sampling modes\n"
+               "  mvcl-bench views ...           two views of one model: memory, lens drag, linked orbit\n"
                "  mvcl-bench cast ...            identical primary rays for checking another tracer\n"
                "  mvcl-bench frame ...           a frame's rays by kind and its rate against the same\n"
                "                                 rays traced again unshaded (the traversal bound)\n"
@@ -172,6 +174,7 @@ int main(int argc, char **argv) {
     if (argc > 1 && std::string(argv[1]) == "frame") return mvcl::bench::runFrameBench(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "pov") return mvcl::bench::runPovExport(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "load") return mvcl::bench::runLoadBench(argc - 1, argv + 1);
+    if (argc > 1 && std::string(argv[1]) == "views") return mvcl::bench::runViewsBench(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "image-diff") return mvcl::bench::runImageDiff(argc - 1, argv + 1);
     std::optional<Options> options;
     try {

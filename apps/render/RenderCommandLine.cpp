@@ -121,6 +121,10 @@ std::unique_ptr<CLI::App> renderApp(RenderCommandLine &cl, std::vector<std::stri
                     "lens-stack JSON: lenses, and the scene, camera and layer rules unless\n"
                     "given here (command-line layer rules come first, so they win)")
         ->type_name("FILE");
+    app->add_option("--view", cl.view,
+                    "which view of a --lenses session of several views to render (0, 1, ...),\n"
+                    "or 'all': every view side by side in one image")
+        ->type_name("N|all");
     app->add_option("--lens", cl.lensSpecs,
                     "one more lens on top, repeatable: TYPE:key=value,... where a key is a\n"
                     "property of the lens or shape, center, size, points, feather, outline,\n"
@@ -212,6 +216,10 @@ RenderCommandLine parseRenderCommandLine(const std::vector<std::string> &args) {
         usageError("--turntable N sets the frame count already");
     if (isAnimation(cl) && !cl.convergenceLogFile.empty())
         usageError("--convergence-log logs the passes of one image, not of an animation's frames");
+    if (!cl.view.empty() && cl.lensFile.empty()) usageError("--view picks a view of the --lenses session");
+    if (cl.view == "all")
+        for (const char *option : {"--save-lenses", "--convergence-log", "--animate", "--turntable", "--sweep", "--info"})
+            if (app->count(option)) usageError(std::string("--view all renders every view into one image; ") + option + " works on one view");
     if (!isAnimation(cl))
         for (const char *option : {"--frames", "--frame-count", "--frame-rate", "--save-animation"})
             if (app->count(option)) usageError(std::string(option) + " needs --animate, --turntable or --sweep");

@@ -47,6 +47,7 @@ struct RenderCommandLine {
     std::uint64_t memoryBudgetMiB = 0; ///< --memory-budget; 0 = defaultMemoryBudgetBytes()
     std::string layerContact;        ///< --layer-contact, LayerContact::parse() text; empty = the session's or off
     std::string lensFile;            ///< lens-stack JSON (--lenses)
+    std::string view;                ///< --view N|all: a view of a session of several; empty = the first
     std::vector<std::string> lensSpecs; ///< "type:key=value,..." (--lens), stacked above the file's
     std::string saveLensesFile;      ///< write the effective stack here (--save-lenses)
     std::string convergenceLogFile;  ///< --convergence-log: a CSV row after every pass

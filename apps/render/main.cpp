@@ -3,6 +3,7 @@
 
 #include "AnimationCommand.h"
 #include "ProgressBar.h"
+#include "ViewsCommand.h"
 #include "RenderCommandLine.h"
 
 #include <mvcl/controller/ViewSetup.h>
@@ -173,6 +174,7 @@ ViewRequest viewRequest(const RenderCommandLine &cl) {
     request.source = cl.source;
     request.moreSources = cl.moreSources;
     request.sessionFile = cl.lensFile;
+    request.sessionView = sessionViewOf(cl);
     request.lensSpecs = cl.lensSpecs;
     request.sceneCamera = cl.camera;
     request.eye = cl.eye;
@@ -298,7 +300,11 @@ int run(const RenderCommandLine &cl) {
         return kExitOk;
     }
     const ViewRequest request = viewRequest(cl);
+    if (cl.view == "all") return renderAllViews(cl, registry, request);
     const ViewSetup setup = ViewSetup::prepare(request, registry);
+    // A view of a session of several may compare two stacks.
+    const std::optional<CompareDescription> compare =
+        setup.sessionFile ? setup.sessionFile->views[std::size_t(request.sessionView)].compare : std::nullopt;
     const LensStack &lenses = setup.session.lenses;
     // Read before the scene loads: a bad animation file fails at once, not after the BVH build.
     const std::optional<Animation> animation =
@@ -333,7 +339,7 @@ int run(const RenderCommandLine &cl) {
     RayPolicy base;
     base.query(RayType::Primary).layerMask = setup.session.visibleLayers;
     session.setBasePolicy(base);
-    session.setLensStack(lenses);
+    setViewStacks(session, lenses, compare);
     if (animation)
         return renderAnimation(cl, *animation, session, lenses, camera, scene,
                                cl.output.empty() ? "out/" + sceneStem(setup.source) + "/%04d.png" : cl.output);
@@ -362,7 +368,7 @@ int run(const RenderCommandLine &cl) {
             std::fprintf(stderr, "mvcl-render: warning: %s; the lens is disabled\n", fault.c_str());
     bar.finish();
     Framebuffer image = session.image();
-    drawLensOutlines(lenses, image);
+    drawViewOutlines(lenses, compare, image);
 
     const std::string output = cl.output.empty() ? "out/" + sceneStem(setup.source) + ".png" : cl.output;
     try {

@@ -70,20 +70,23 @@ Viewer::Viewer(GLFWwindow *window, const ViewerOptions &options) : m_window(wind
     settings.height = viewSize.y;
     const ViewRequest request = withDefaultScene(options.request);
     try {
-        m_controller = std::make_unique<Controller>(m_registry, request, settings);
+        m_document = std::make_unique<Document>(m_registry, request, settings);
     } catch (const Error &e) {
         // The view opens on the default scene, so the user keeps a working window.
         report(std::string(e.what()) + " (showing builtin:cube-in-cube)");
         ViewRequest fallback;
         fallback.source = "builtin:cube-in-cube";
-        m_controller = std::make_unique<Controller>(m_registry, fallback, settings);
+        m_document = std::make_unique<Document>(m_registry, fallback, settings);
     }
-    m_controller->setErrorCallback([this](const Error &e) { report(e.what()); });
-    m_controller->setSceneChangedCallback([this] { m_imageCurrent = false; });
-    if (!options.recovery.empty()) m_controller->setRecoveryPath(options.recovery);
+    m_document->setErrorCallback([this](const Error &e) { report(e.what()); });
+    m_document->setViewsChangedCallback([this] {
+        for (ViewDisplay &view : m_views) view.current = false;
+    });
+    refocus();
+    if (!options.recovery.empty()) m_document->setRecoveryPath(options.recovery);
     offerRecovery(); // before any edit rewrites the copy
-    m_controller->resizeView(viewSize, m_contentScale);
-    m_controller->renderSession().start();
+    layoutViews();
+    m_document->startRendering();
 
     glfwSetDropCallback(window, [](GLFWwindow *, int count, const char **paths) {
         for (int i = 0; i < count; ++i) g_droppedPaths.emplace_back(paths[i]);
@@ -93,7 +96,7 @@ Viewer::Viewer(GLFWwindow *window, const ViewerOptions &options) : m_window(wind
 Viewer::~Viewer() {
     stopRecording();
     stopHistogramWorker();
-    if (m_controller) m_controller->renderSession().stop();
+    if (m_document) m_document->stopRendering();
     glfwSetDropCallback(m_window, nullptr);
 }
 
@@ -131,11 +134,9 @@ void Viewer::layout() {
 
 void Viewer::update() {
     m_frameStart = Clock::now();
-    if (!m_controller) return;
+    if (!m_document) return;
     layout();
-    // The image is rendered in framebuffer pixels: sharp on high-DPI displays.
-    const glm::ivec2 viewSize = glm::max(glm::ivec2(m_viewScreenSize * m_framebufferScale), glm::ivec2(1));
-    if (viewSize != m_controller->viewSize()) handle(InputEvent::resized(viewSize, m_contentScale));
+    layoutViews(); // the views are rendered in framebuffer pixels: sharp on high-DPI displays
     if (!g_droppedPaths.empty()) {
         InputEvent drop = InputEvent::fileDrop(m_pointer, g_droppedPaths);
         g_droppedPaths.clear();
@@ -143,32 +144,42 @@ void Viewer::update() {
         handle(drop);
     }
     runScript();
+    refocus();
     updatePlayback();
     takeImage();
+    m_document->updateRenderPriority(); // the focused view refines first
     recordFrame();
 }
 
 void Viewer::takeImage() {
-    PixelRect changed;
-    RenderSession &session = m_controller->renderSession();
-    // Idle before the copy: then the copy holds the session's final pixels.
-    const bool idle = !session.hasWork();
-    // Never waits: when the session is publishing right now, the next frame takes it.
-    if (!session.copyImage(m_image, changed)) return;
-    m_texture.update(m_image, changed);
-    if (!changed.isEmpty()) ++m_benchImageUpdates;
-    m_imageCurrent = idle && m_image.width() > 0;
-}
-
-void Viewer::handle(const InputEvent &event) {
-    try {
-        m_controller->handle(event);
-    } catch (const Error &e) {
-        report(e.what());
+    for (int i = 0; i < m_document->viewCount(); ++i) {
+        ViewDisplay &view = m_views[std::size_t(i)];
+        PixelRect changed;
+        RenderSession &session = m_document->view(i).renderSession();
+        // Idle before the copy: then the copy holds the session's final pixels.
+        const bool idle = !session.hasWork();
+        // Never waits: when the session is publishing right now, the next frame takes it.
+        if (!session.copyImage(view.image, changed)) continue;
+        view.texture.update(view.image, changed);
+        if (!changed.isEmpty()) ++m_benchImageUpdates;
+        view.current = idle && view.image.width() > 0;
     }
 }
 
-glm::vec2 Viewer::pixelFromNormalized(const glm::vec2 &p) const { return p * m_viewScreenSize; }
+void Viewer::handle(const InputEvent &event) {
+    InputEvent inWindow = event;
+    inWindow.position += glm::vec2(focusedDisplay().pixelOrigin);
+    handleInWindow(inWindow);
+}
+
+void Viewer::handleInWindow(const InputEvent &event) {
+    try {
+        m_document->handle(event);
+    } catch (const Error &e) {
+        report(e.what());
+    }
+    refocus();
+}
 
 void Viewer::forwardInput() {
     ImGuiIO &io = ImGui::GetIO();
@@ -179,23 +190,23 @@ void Viewer::forwardInput() {
     if (io.KeySuper) modifiers = modifiers | KeyModifier::Super;
 
     const glm::vec2 screen(io.MousePos.x, io.MousePos.y);
-    const bool insideView = ImGui::IsMousePosValid() && screen.x >= 0.f && screen.y >= 0.f &&
-                            screen.x < m_viewScreenSize.x && screen.y < m_viewScreenSize.y;
-    const bool overView = insideView && !io.WantCaptureMouse;
-    const glm::vec2 pixel = screen * m_framebufferScale;
+    const glm::vec2 pixel = screen * m_framebufferScale; // window framebuffer pixels
+    const int viewUnder = ImGui::IsMousePosValid() ? m_document->router().viewAt(pixel) : -1;
+    const bool overView = viewUnder >= 0 && !io.WantCaptureMouse;
     if (m_script) return; // a script drives the pointer and keys itself
-    m_pointer = insideView ? pixel : glm::vec2(-1.f);
+    m_pointer = viewUnder >= 0 && viewUnder == m_document->focusedView() ? pixel - glm::vec2(focusedDisplay().pixelOrigin)
+                                                                         : glm::vec2(-1.f);
 
-    const bool dragging = m_controller->isDragging();
+    const bool dragging = m_document->router().capture() >= 0;
     if ((overView || dragging) && (io.MouseDelta.x != 0.f || io.MouseDelta.y != 0.f))
-        handle(InputEvent::pointerMove(pixel, modifiers));
+        handleInWindow(InputEvent::pointerMove(pixel, modifiers));
     const PointerButton buttons[] = {PointerButton::Left, PointerButton::Right, PointerButton::Middle};
     for (int b = 0; b < 3; ++b) {
-        if (ImGui::IsMouseClicked(b) && overView) handle(InputEvent::pointerPress(pixel, buttons[b], modifiers));
+        if (ImGui::IsMouseClicked(b) && overView) handleInWindow(InputEvent::pointerPress(pixel, buttons[b], modifiers));
         if (ImGui::IsMouseReleased(b) && (overView || dragging))
-            handle(InputEvent::pointerRelease(pixel, buttons[b], modifiers));
+            handleInWindow(InputEvent::pointerRelease(pixel, buttons[b], modifiers));
     }
-    if (overView && io.MouseWheel != 0.f) handle(InputEvent::scrolled(pixel, {0.f, io.MouseWheel}, modifiers));
+    if (overView && io.MouseWheel != 0.f) handleInWindow(InputEvent::scrolled(pixel, {0.f, io.MouseWheel}, modifiers));
 
     if (io.WantCaptureKeyboard) return;
     static const std::pair<int, Key> kKeys[] = {
@@ -223,12 +234,24 @@ void Viewer::handleViewerKeys() {
     }
     if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_O, false)) m_openPopupRequested = true;
     if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Q, false)) m_quit = true;
+    // Layouts: F5 one view, F6 two side by side, F7 two stacked, F8 four; Tab: the next view.
+    const std::pair<int, ViewLayout> kLayoutKeys[] = {{GLFW_KEY_F5, ViewLayout::Single}, {GLFW_KEY_F6, ViewLayout::Columns},
+                                                      {GLFW_KEY_F7, ViewLayout::Rows}, {GLFW_KEY_F8, ViewLayout::Grid}};
+    for (const auto &[glfwKey, layout] : kLayoutKeys)
+        if (ImGui::IsKeyPressed(glfwKey, false)) setLayout(layout);
+    if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false)) {
+        const std::vector<int> shown = m_document->shownViews();
+        const auto at = std::find(shown.begin(), shown.end(), m_document->focusedView());
+        const int next = shown.size() > 1 && at != shown.end() ? shown[std::size_t((at - shown.begin() + 1)) % shown.size()]
+                                                               : (m_document->focusedView() + 1) % m_document->viewCount();
+        m_document->setFocusedView(next);
+        refocus();
+    }
 }
 
 void Viewer::writeScreenshot(const std::string &file) {
-    // The rendered image as the session has it, with the lenses' outline joins, no UI.
-    Framebuffer image = m_image;
-    drawLensOutlines(m_controller->lensStack(), image);
+    // Every shown view as the sessions have it, with the lenses' outline joins, no UI.
+    const Framebuffer image = composedViews();
     try {
         std::filesystem::create_directories(std::filesystem::path(file).parent_path().empty()
                                                 ? std::filesystem::path(".")
@@ -259,6 +282,7 @@ void Viewer::openFile(const std::string &file) {
     } catch (const Error &e) {
         report(e.what());
     }
+    refocus(); // a session may bring other views
 }
 
 void Viewer::frameDrawn() {

@@ -1,6 +1,7 @@
 #pragma once
-// The viewer's state between frames: the controller (scene, camera, lenses, history, render
-// session), the image texture, the panels' bits of UI state and the script being replayed.
+// The viewer's state between frames: the document (scene, views, links, history), each view's
+// image texture, the panels' bits of UI state and the script being replayed. The panels and
+// the script's lens commands act on the focused view (m_controller).
 // main.cpp calls update(), drawUi() and frameDrawn() once per frame.
 
 #include "ImageTexture.h"
@@ -9,6 +10,7 @@
 
 #include <mvcl/controller/AnimationPlayer.h>
 #include <mvcl/controller/Controller.h>
+#include <mvcl/controller/Document.h>
 #include <mvcl/controller/ViewRecorder.h>
 #include <mvcl/lens/LensRegistry.h>
 #include <mvcl/lens/PolicyMap.h>
@@ -17,6 +19,7 @@
 #include <mvcl/view/Framebuffer.h>
 #include <mvcl/view/Picking.h>
 
+#include <array>
 #include <chrono>
 #include <deque>
 #include <memory>
@@ -55,7 +58,10 @@ private:
     void takeImage();
     void forwardInput();
     void handleViewerKeys();
+    /// An event at the focused view's framebuffer pixels (the script's), to the document.
     void handle(const InputEvent &event);
+    /// An event at window framebuffer pixels, to the document (routed to a view).
+    void handleInWindow(const InputEvent &event);
     void report(const std::string &message);
     /// At start: a recovery copy newer than its session (or of a session never saved) means the
     /// last run ended before saving; say where it is and how to open it.
@@ -63,7 +69,19 @@ private:
     void writeScreenshot(const std::string &file);
     void saveSession(const std::string &file);
     void openFile(const std::string &file);
-    glm::vec2 pixelFromNormalized(const glm::vec2 &p) const;
+    // ViewerViews.cpp (drawViewOverlays is in ViewerOverlays.cpp)
+    /// Places the shown views in the image area (the layout's grid) and tells the document.
+    void layoutViews();
+    /// The focused view again (after a press, undo, a layout change, a session load).
+    void refocus();
+    void setLayout(ViewLayout layout);
+    /// What every view would show as laid out, without UI (the script's screenshot).
+    Framebuffer composedViews() const;
+    /// A thin frame around the focused view when several are shown.
+    void drawViewFrames();
+    /// One view's lens outlines, handles and compare divider, clipped to the view: everything
+    /// drawn for a view is a function of its controller and its place on screen.
+    void drawViewOverlays(const Controller &view, const glm::vec2 &origin, const glm::vec2 &size);
     // ViewerOverlays.cpp
     void drawImage();
     void drawLensOverlays();
@@ -73,6 +91,8 @@ private:
     void drawMessages();
     // ViewerPanels.cpp
     void drawPanels();
+    /// Layout, links of the focused view, compare mode.
+    void drawViewsPanel();
     void drawLensStackPanel();
     void drawLensPanel();
     void drawLayersPanel();
@@ -107,15 +127,26 @@ private:
     GLFWwindow *m_window;
     ViewerOptions m_options;
     LensRegistry m_registry;
-    std::unique_ptr<Controller> m_controller;
-    ImageTexture m_texture;
-    Framebuffer m_image;          ///< the last copy of the session's display image
-    bool m_imageCurrent = false;  ///< m_image holds everything the session has published
+    std::unique_ptr<Document> m_document;
+    Controller *m_controller = nullptr; ///< the focused view of m_document
+
+    /// What the window shows of one view.
+    struct ViewDisplay {
+        ImageTexture texture;
+        Framebuffer image;          ///< the last copy of the session's display image
+        bool current = false;       ///< `image` holds everything the session has published
+        bool shown = false;         ///< the layout shows the view
+        glm::vec2 screenOrigin{0.f}; ///< screen units (ImGui's)
+        glm::vec2 screenSize{1.f};
+        glm::ivec2 pixelOrigin{0};  ///< window framebuffer pixels
+    };
+    std::array<ViewDisplay, Document::kMaxViews> m_views;
+    ViewDisplay &focusedDisplay() { return m_views[std::size_t(m_document->focusedView())]; }
 
     // Layout in screen units (ImGui's) and framebuffer pixels.
     float m_contentScale = 1.f;
     glm::vec2 m_framebufferScale{1.f};
-    glm::vec2 m_viewScreenSize{0.f};
+    glm::vec2 m_viewScreenSize{0.f}; ///< the image area, every view together
     float m_panelWidth = 0.f;
 
     // UI state.
@@ -124,7 +155,7 @@ private:
     bool m_openPopupRequested = false;
     std::string m_openPath;
     std::deque<std::string> m_messages;
-    glm::vec2 m_pointer{-1.f};        ///< framebuffer pixels; negative when outside the view
+    glm::vec2 m_pointer{-1.f};        ///< framebuffer pixels of the focused view; negative when outside it
     int m_screenshotCount = 0;
     std::string m_pendingWindowShot;
 

@@ -143,9 +143,9 @@ void Viewer::startRecording(const std::string &target, double frameRate) {
 }
 
 void Viewer::recordFrame() {
-    if (!m_recorder || m_image.width() == 0) return;
+    if (!m_recorder || focusedDisplay().image.width() == 0) return;
     // What the view shows, as a screenshot has it: the image with lens outlines, no panels.
-    Framebuffer image = m_image;
+    Framebuffer image = focusedDisplay().image;
     drawLensOutlines(m_controller->lensStack(), image);
     try {
         m_recorder->addImage(secondsSince(m_recordStart), image);

@@ -54,6 +54,7 @@ void Viewer::drawPanels() {
     ImGui::SetNextWindowSize(ImVec2(m_panelWidth, m_viewScreenSize.y), ImGuiCond_Always);
     ImGui::Begin("mvcl", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     ImGui::TextDisabled("%s  (F1: help)", describeSources(m_controller->sceneSources()).c_str());
+    if (ImGui::CollapsingHeader("Views", m_document->viewCount() > 1 ? ImGuiTreeNodeFlags_DefaultOpen : 0)) drawViewsPanel();
     if (ImGui::CollapsingHeader("Lenses", ImGuiTreeNodeFlags_DefaultOpen)) drawLensStackPanel();
     if (ImGui::CollapsingHeader("Selected lens", ImGuiTreeNodeFlags_DefaultOpen)) drawLensPanel();
     if (ImGui::CollapsingHeader("Layers", ImGuiTreeNodeFlags_DefaultOpen)) drawLayersPanel();
@@ -64,6 +65,41 @@ void Viewer::drawPanels() {
     m_convergence.add(m_controller->renderSession().convergence(), m_controller->renderSession().passCount());
     if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsPanel();
     ImGui::End();
+}
+
+void Viewer::drawViewsPanel() {
+    int layout = int(m_document->layout());
+    const char *const names[] = {"1", "1x2", "2x1", "2x2"};
+    for (int i = 0; i < 4; ++i) {
+        if (i > 0) ImGui::SameLine();
+        if (ImGui::RadioButton(names[i], &layout, i)) setLayout(ViewLayout(i));
+    }
+    const int focus = m_document->focusedView();
+    ImGui::Text("focused: view %d of %d (Tab: next)", focus, m_document->viewCount());
+    // Links of the focused view with each other view.
+    for (int other = 0; other < m_document->viewCount(); ++other) {
+        if (other == focus) continue;
+        ImGui::PushID(other);
+        ImGui::Text("link with view %d:", other);
+        for (LinkAspect aspect : {LinkAspect::Camera, LinkAspect::Lenses, LinkAspect::Layers}) {
+            ImGui::SameLine();
+            bool linked = m_document->isLinked(focus, other, aspect);
+            if (ImGui::Checkbox(linkAspectName(aspect), &linked))
+                edit([&] { linked ? m_document->link(focus, other, aspect) : m_document->unlink(focus, other, aspect); });
+        }
+        ImGui::PopID();
+    }
+    bool compare = m_controller->isCompareEnabled();
+    if (ImGui::Checkbox("compare A | B", &compare)) edit([&] { m_controller->setCompareEnabled(compare); });
+    if (compare) {
+        ImGui::SameLine();
+        int side = int(m_controller->compareSide());
+        if (ImGui::RadioButton("edit A", &side, 0)) m_controller->setCompareSide(CompareSide::Left);
+        ImGui::SameLine();
+        if (ImGui::RadioButton("edit B", &side, 1)) m_controller->setCompareSide(CompareSide::Right);
+        float divider = m_controller->compareDivider();
+        if (ImGui::SliderFloat("divider", &divider, 0.f, 1.f)) edit([&] { m_controller->setCompareDivider(divider); });
+    }
 }
 
 void Viewer::drawLensStackPanel() {

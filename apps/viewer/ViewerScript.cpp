@@ -1,6 +1,9 @@
 #include "ViewerScript.h"
 
+#include <mvcl/controller/Document.h>
 #include <mvcl/core/Error.h>
+#include <mvcl/io/ViewLayout.h>
+#include <mvcl/io/ViewLink.h>
 
 #include <charconv>
 #include <cmath>
@@ -29,12 +32,38 @@ const std::map<std::string, Arity> &commandTable() {
         {"add-keyframe", {2, 2}},  {"play", {1, 1}},            {"record", {2, 2}},
         {"stop-recording", {0, 0}}, {"write-turntable", {2, 3}}, {"quit", {0, 1}},
         {"gizmo-drag", {4, 7}},    {"fit-lens", {2, 3}},        {"follow-pointer", {2, 2}},
+        {"layout", {1, 1}},        {"focus-view", {1, 1}},      {"link", {3, 3}},
+        {"unlink", {3, 3}},        {"compare", {1, 1}},         {"compare-divider", {1, 1}},
     };
     return table;
 }
 
 [[noreturn]] void fail(const ScriptCommand &c, const std::string &problem) {
     throw Error("script line " + std::to_string(c.line), c.name + ": " + problem);
+}
+
+/// The values of the view commands, checked with the rest of the script before it runs.
+void checkValues(const ScriptCommand &c) {
+    const auto viewIndex = [&](std::size_t i) {
+        const int view = c.integer(i);
+        if (view < 0 || view >= Document::kMaxViews)
+            fail(c, "view " + c.word(i) + " does not exist (views 0.." + std::to_string(Document::kMaxViews - 1) + ")");
+    };
+    try {
+        if (c.name == "layout") parseViewLayout(c.word(0), "");
+        else if (c.name == "link" || c.name == "unlink") parseLinkAspect(c.word(0), "");
+    } catch (const Error &e) {
+        fail(c, e.problem());
+    }
+    if (c.name == "focus-view") viewIndex(0);
+    if (c.name == "link" || c.name == "unlink") {
+        viewIndex(1);
+        viewIndex(2);
+        if (c.integer(1) == c.integer(2)) fail(c, "a view cannot be linked to itself");
+    }
+    if (c.name == "compare" && c.word(0) != "on" && c.word(0) != "off") fail(c, "expects on or off, got '" + c.word(0) + "'");
+    if (c.name == "compare-divider" && !(c.number(0) >= 0.0 && c.number(0) <= 1.0))
+        fail(c, "the divider is a fraction of the view's width, 0..1, got " + c.word(0));
 }
 
 } // namespace
@@ -97,6 +126,7 @@ ViewerScript ViewerScript::parse(std::istream &in, const std::filesystem::path &
             if (c.args.size() < it->second.minimum || c.args.size() > it->second.maximum)
                 fail(c, "takes " + std::to_string(it->second.minimum) + ".." + std::to_string(it->second.maximum) +
                             " arguments, got " + std::to_string(c.args.size()));
+            checkValues(c);
         } catch (const Error &e) {
             throw Error(file.string() + ":" + std::to_string(line), e.problem());
         }
@@ -106,19 +136,24 @@ ViewerScript ViewerScript::parse(std::istream &in, const std::filesystem::path &
 }
 
 const char *ViewerScript::syntax() {
-    return R"(move X Y                      pointer to framebuffer pixel (X, Y) of the view
+    return R"(move X Y                      pointer to framebuffer pixel (X, Y) of the focused view
 press|release BUTTON [MODS]   BUTTON left|middle|right; MODS shift ctrl alt
 click BUTTON X Y [MODS]       move, press, release
 drag BUTTON X0 Y0 X1 Y1 [N] [MODS]  press at (X0, Y0), N moves (default 8, one per frame), release
 scroll STEPS [X Y]            wheel steps (> 0 zooms in) at the pointer or at (X, Y)
 key NAME [MODS]               F1 F12 F Home 1..6 PageUp PageDown Delete E D Z Y B P Escape
-add-lens TYPE X Y             a lens of TYPE centred at normalised (X, Y)
+layout 1|1x2|2x1|2x2          show one view, two side by side, two stacked, or four
+focus-view N                  keys, pointer positions and the lens commands go to view N
+link|unlink camera|lenses|layers A B   link views A and B two-way (the focused view's copied)
+compare on|off                split the focused view: lens stack A left, B right of a divider
+compare-divider X             the divider at X (0..1 of the view's width)
+add-lens TYPE X Y             a lens of TYPE centred at normalised (X, Y) in the focused view
 select INDEX                  select lens INDEX (-1: none)
 set-property INDEX NAME VALUE a property of lens INDEX in its text form
 set-layer LAYER visible|hidden
 wait-converged                until the render session is idle and its image shown
 wait-frames N                 draw N frames
-screenshot FILE               the rendered image with lens outlines, no UI
+screenshot FILE               every shown view as laid out, with lens outlines, no UI
 window-screenshot FILE        the whole window, panels included
 save-session FILE | load-session FILE | open MODEL
 expect-lenses N               fail (exit 1) unless the stack holds N lenses

@@ -47,7 +47,6 @@ void Viewer::runScript() {
 
 bool Viewer::runCommand(const ScriptCommand &c) {
     const std::string &name = c.name;
-    RenderSession &session = m_controller->renderSession();
     auto fail = [&](const std::string &problem) -> bool {
         throw Error("script line " + std::to_string(c.line), name + ": " + problem);
     };
@@ -118,7 +117,11 @@ bool Viewer::runCommand(const ScriptCommand &c) {
         m_controller->setLayerVisibility(c.integer(0), c.word(1) == "visible" ? LayerVisibility::Visible : LayerVisibility::Hidden);
     } else if (name == "wait-converged") {
         // Idle, and the last published pixels are on screen.
-        if (session.hasWork() || !m_imageCurrent) return false;
+        // Every view: linked views render what the focused one's edits sent them.
+        for (int i = 0; i < m_document->viewCount(); ++i)
+            if (const RenderSession &session = m_document->view(i).renderSession();
+                session.hasWork() || session.isRefinementHeld() || (m_views[std::size_t(i)].shown && !m_views[std::size_t(i)].current))
+                return false;
     } else if (name == "wait-frames") {
         m_waitFrames = std::max(0, c.integer(0));
     } else if (name == "screenshot") {
@@ -131,11 +134,10 @@ bool Viewer::runCommand(const ScriptCommand &c) {
     } else if (name == "load-session") {
         stopHistogramWorker();
         m_controller->loadSession(c.word(0));
-        m_imageCurrent = false;
+        refocus();
     } else if (name == "open") {
         stopHistogramWorker();
         m_controller->openScenes(c.args); // several models: the layers of one scene
-        m_imageCurrent = false;
     } else if (name == "expect-lenses") {
         if (m_controller->lensCount() != c.integer(0))
             fail("the stack holds " + std::to_string(m_controller->lensCount()) + " lenses, not " + c.word(0));
@@ -170,6 +172,24 @@ bool Viewer::runCommand(const ScriptCommand &c) {
         startRecording(c.word(0), c.number(1));
     } else if (name == "stop-recording") {
         stopRecording();
+    } else if (name == "layout") {
+        setLayout(parseViewLayout(c.word(0), "script line " + std::to_string(c.line)));
+    } else if (name == "focus-view") {
+        if (c.integer(0) >= m_document->viewCount())
+            fail("no view " + c.word(0) + " (there are " + std::to_string(m_document->viewCount()) + "; a layout adds them)");
+        m_document->setFocusedView(c.integer(0));
+        refocus();
+    } else if (name == "link" || name == "unlink") {
+        const LinkAspect aspect = parseLinkAspect(c.word(0), "script line " + std::to_string(c.line));
+        for (int i : {1, 2})
+            if (c.integer(i) >= m_document->viewCount()) fail("no view " + c.word(i) + " (there are " + std::to_string(m_document->viewCount()) + ")");
+        if (name == "link") m_document->link(c.integer(1), c.integer(2), aspect);
+        else m_document->unlink(c.integer(1), c.integer(2), aspect);
+    } else if (name == "compare") {
+        m_controller->setCompareEnabled(c.word(0) == "on");
+    } else if (name == "compare-divider") {
+        if (!m_controller->isCompareEnabled()) fail("the focused view is not in compare mode (compare on)");
+        m_controller->setCompareDivider(float(c.number(0)));
     } else if (runGizmoCommand(*m_controller, c, m_pointer)) { // gizmo-drag, fit-lens, follow-pointer
         m_waitFrames = 1;
     } else if (name == "quit") {

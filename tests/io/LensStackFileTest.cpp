@@ -349,7 +349,7 @@ TEST(LensStackFile, BadFilesFailNamingTheFileAndThePath) {
     } cases[] = {
         {R"({"lenses": [)", "invalid JSON", "line 1"},
         {R"([1, 2])", "expected an object", "array"},
-        {R"({"version": 2})", "version", "2"},
+        {R"({"version": 3})", "version", "3"}, // 2 is a session of several views (SessionFile.h)
         {R"({"scene": 3})", "scene", "string"},
         {R"({"lenses": {"type": "every-type"}})", "lenses", "array"},
         {R"({"lenses": [{"label": "no type"}]})", "lenses[0]", "type"},

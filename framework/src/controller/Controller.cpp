@@ -2,6 +2,7 @@
 // Lens edits are in ControllerLenses.cpp, input in ControllerInput.cpp.
 
 #include "Controller_p.h"
+#include "Document_p.h"
 
 #include <mvcl/io/SceneLoader.h>
 
@@ -10,27 +11,6 @@
 
 namespace mvcl {
 
-namespace {
-
-bool sameRules(const LayerRules &a, const LayerRules &b) {
-    return std::ranges::equal(a.rules(), b.rules(), [](const LayerRule &x, const LayerRule &y) {
-        return x.pattern == y.pattern && x.layer == y.layer && x.name == y.name;
-    });
-}
-
-/// The same scene source: equal text, or two names of one model file.
-bool sameSource(const std::string &a, const std::string &b) {
-    if (a == b) return true;
-    if (a.starts_with("builtin:") || b.starts_with("builtin:")) return false;
-    std::error_code ec;
-    return std::filesystem::equivalent(a, b, ec);
-}
-
-bool sameSources(const std::vector<std::string> &a, const std::vector<std::string> &b) {
-    return std::ranges::equal(a, b, sameSource);
-}
-
-} // namespace
 
 // --- Private helpers ---------------------------------------------------------------------------
 
@@ -40,33 +20,59 @@ RayPolicy Controller::Private::basePolicy() const {
     return policy;
 }
 
+namespace {
+
+std::vector<LensState> statesOf(const LensStack &stack) {
+    std::vector<LensState> states;
+    for (const std::shared_ptr<Lens> &lens : stack.lenses()) states.push_back(LensState::of(*lens));
+    return states;
+}
+
+} // namespace
+
 SessionState Controller::Private::captureState() const {
     SessionState state;
     state.camera = camera;
     state.visibleLayers = visibleLayers;
-    for (const std::shared_ptr<Lens> &lens : stack.lenses()) state.lenses.push_back(LensState::of(*lens));
+    state.lenses = statesOf(leftStack());
+    if (compare) state.compare = CompareState{statesOf(rightStack()), compare->divider};
     return state;
+}
+
+LensStack Controller::Private::rebuiltStack(const LensStack &current, const std::vector<LensState> &wanted) const {
+    LensStack rebuilt;
+    std::vector<bool> reused(std::size_t(current.size()), false);
+    const std::vector<LensState> states = statesOf(current);
+    for (const LensState &state : wanted) {
+        std::shared_ptr<Lens> lens;
+        for (std::size_t i = 0; i < states.size() && !lens; ++i)
+            if (!reused[i] && states[i] == state) {
+                reused[i] = true;
+                lens = current.lens(int(i));
+            }
+        rebuilt.add(lens ? lens : state.create(registry));
+    }
+    return rebuilt;
 }
 
 void Controller::Private::restore(const Step &step) {
     const SessionState &target = step.state;
-    // Build the new stack first, so that a lens that fails to build leaves everything as it
+    // Build the new stacks first, so that a lens that fails to build leaves everything as it
     // was. Lenses already in the wanted state are kept as they are.
-    LensStack rebuilt;
-    std::vector<bool> reused(std::size_t(stack.size()), false);
-    std::vector<LensState> current;
-    for (const std::shared_ptr<Lens> &lens : stack.lenses()) current.push_back(LensState::of(*lens));
-    for (const LensState &wanted : target.lenses) {
-        std::shared_ptr<Lens> lens;
-        for (std::size_t i = 0; i < current.size() && !lens; ++i)
-            if (!reused[i] && current[i] == wanted) {
-                reused[i] = true;
-                lens = stack.lens(int(i));
-            }
-        rebuilt.add(lens ? lens : wanted.create(registry));
+    const bool rightEdited = compare && compare->side == CompareSide::Right && target.compare;
+    const std::vector<LensState> &editedWanted = rightEdited ? target.compare->lenses : target.lenses;
+    LensStack rebuilt = rebuiltStack(stack, editedWanted);
+    std::optional<Compare> rebuiltCompare;
+    if (target.compare) {
+        const std::vector<LensState> &otherWanted = rightEdited ? target.lenses : target.compare->lenses;
+        rebuiltCompare = Compare{rebuiltStack(compare ? compare->other : LensStack{}, otherWanted),
+                                 target.compare->divider, rightEdited ? CompareSide::Right : CompareSide::Left};
     }
-    const bool lensesChanged = rebuilt.lenses() != stack.lenses();
+    const bool lensesChanged = rebuilt.lenses() != stack.lenses() || compare.has_value() != rebuiltCompare.has_value() ||
+                               (compare && (compare->other.lenses() != rebuiltCompare->other.lenses() ||
+                                            compare->divider != rebuiltCompare->divider));
     stack = std::move(rebuilt);
+    compare = std::move(rebuiltCompare);
     if (lensesChanged) sendLenses();
     if (!(camera == target.camera)) {
         camera = target.camera;
@@ -84,6 +90,22 @@ RenderSettings Controller::Private::sessionSettings() const {
     s.width = viewSize.x;
     s.height = viewSize.y;
     return s;
+}
+
+void Controller::Private::sendLenses() {
+    placeLenses();
+    if (compare) session->setLensStacks(leftStack(), rightStack(), compare->divider);
+    else session->setLensStack(stack);
+    reportLensFaults();
+    tellDocument(LinkAspect::Lenses);
+}
+
+void Controller::Private::tellDocument(LinkAspect aspect) {
+    if (document) document->viewChanged(viewIndex, aspect);
+}
+
+void Controller::Private::editInDocument(StepKind kind, const std::function<void()> &apply) {
+    document->edit(viewIndex, kind == StepKind::Zoom, apply);
 }
 
 void Controller::Private::finishStep(const Step &before, StepKind kind) {
@@ -105,6 +127,10 @@ void Controller::Private::clearHistory() {
 }
 
 void Controller::Private::writeRecovery() {
+    if (document) {
+        document->writeRecovery();
+        return;
+    }
     const std::filesystem::path path = q.recoveryPath();
     if (path.empty()) return;
     try {
@@ -133,10 +159,11 @@ void Controller::Private::report(const Error &error) const {
     errorCallback(error);
 }
 
-void Controller::Private::replaceScene(std::unique_ptr<Scene> newScene, std::unique_ptr<Tracer> newTracer) {
+void Controller::Private::replaceScene(std::shared_ptr<const Scene> newScene, std::shared_ptr<const Tracer> newTracer) {
     const bool wasRunning = session && session->isRunning();
     auto newSession = std::make_unique<RenderSession>(*newTracer);
     newSession->setSettings(sessionSettings());
+    if (document) newSession->setPassGate(document->passGate); // the views take turns on the cores
     if (session) session->stop();
     // The old session renders with the old tracer, which points into the old scene.
     session = std::move(newSession);
@@ -155,8 +182,8 @@ Controller::Controller(const LensRegistry &registry, const ViewRequest &request,
     d->settings = settings;
     d->viewSize = {std::max(settings.width, 1), std::max(settings.height, 1)};
     ViewSetup setup = ViewSetup::prepare(request, registry);
-    auto scene = std::make_unique<Scene>(loadScene(setup.sources(), setup.loadOptions));
-    auto tracer = std::make_unique<Tracer>(*scene);
+    auto scene = std::make_shared<const Scene>(loadScene(setup.sources(), setup.loadOptions));
+    auto tracer = std::make_shared<const Tracer>(*scene);
     d->camera = setup.camera(*scene, request, float(d->viewSize.x) / float(d->viewSize.y));
     d->visibleLayers = setup.session.visibleLayers;
     d->stack = setup.session.lenses;
@@ -164,6 +191,18 @@ Controller::Controller(const LensRegistry &registry, const ViewRequest &request,
     d->setup = std::move(setup);
     d->replaceScene(std::move(scene), std::move(tracer));
     if (!request.sessionFile.empty()) d->sessionPath = request.sessionFile;
+}
+
+Controller::Controller(Document &document, int index, const Camera &camera, const RenderSettings &settings)
+    : d(std::make_unique<Private>(*this, document.lensRegistry())) {
+    Document::Private &owner = *document.d;
+    d->document = &owner;
+    d->viewIndex = index;
+    d->settings = settings;
+    d->viewSize = {std::max(settings.width, 1), std::max(settings.height, 1)};
+    d->setup = owner.setup;
+    d->camera = camera;
+    d->replaceScene(owner.scene, owner.tracer);
 }
 
 Controller::~Controller() {
@@ -185,6 +224,10 @@ void Controller::openScene(const std::string &source, const SceneLoadOptions &op
 
 void Controller::openScenes(const std::vector<std::string> &sources, const SceneLoadOptions &options) {
     if (sources.empty()) return;
+    if (d->document) {
+        d->document->openScenes(sources, options);
+        return;
+    }
     if (d->drag.kind != DragKind::None) d->cancelDrag();
     ViewSetup setup;
     setup.source = sources.front();
@@ -193,8 +236,8 @@ void Controller::openScenes(const std::vector<std::string> &sources, const Scene
     ViewRequest request;
     request.source = setup.source;
     request.moreSources = setup.moreSources;
-    auto scene = std::make_unique<Scene>(loadScene(sources, options));
-    auto tracer = std::make_unique<Tracer>(*scene);
+    auto scene = std::make_shared<const Scene>(loadScene(sources, options));
+    auto tracer = std::make_shared<const Tracer>(*scene);
     const Camera camera = setup.camera(*scene, request, coordinates().aspect());
     // Nothing below throws: the new scene is complete.
     d->setup = std::move(setup);
@@ -209,15 +252,23 @@ void Controller::openScenes(const std::vector<std::string> &sources, const Scene
 // --- session files ----------------------------------------------------------------------------------
 
 LensStackDescription Controller::description() const {
-    return d->setup.describe(*d->scene, d->camera, d->stack, d->visibleLayers);
+    return d->setup.describe(*d->scene, d->camera, d->leftStack(), d->visibleLayers);
 }
 
 void Controller::saveSession(const std::filesystem::path &file) {
+    if (d->document) {
+        d->document->saveSession(file);
+        return;
+    }
     writeLensStackFile(file, description());
     d->sessionPath = file;
 }
 
 void Controller::loadSession(const std::filesystem::path &file) {
+    if (d->document) {
+        d->document->loadSession(file);
+        return;
+    }
     ViewRequest request;
     request.sessionFile = file;
     request.origin = file.string(); // "no scene given" is the file's problem here
@@ -226,18 +277,16 @@ void Controller::loadSession(const std::filesystem::path &file) {
     request.loadOptions.layerRules = {};
     request.loadOptions.layerContact = {}; // the file's contact tolerance, like its rules
     ViewSetup setup = ViewSetup::prepare(request, d->registry);
-    const bool sameScene = sameSources(setup.sources(), d->setup.sources()) &&
-                           sameRules(setup.loadOptions.layerRules, d->setup.loadOptions.layerRules) &&
-                           setup.loadOptions.layerContact == d->setup.loadOptions.layerContact;
-    std::unique_ptr<Scene> scene;
-    std::unique_ptr<Tracer> tracer;
+    const bool sameScene = setup.loadsSameScene(d->setup);
+    std::shared_ptr<const Scene> scene;
+    std::shared_ptr<const Tracer> tracer;
     if (!sameScene) {
         try {
-            scene = std::make_unique<Scene>(loadScene(setup.sources(), setup.loadOptions));
+            scene = std::make_shared<const Scene>(loadScene(setup.sources(), setup.loadOptions));
         } catch (const Error &e) { // the scene's own error, said to be the session file's scene
             throw Error(file.string(), "scene: " + std::string(e.what()));
         }
-        tracer = std::make_unique<Tracer>(*scene);
+        tracer = std::make_shared<const Tracer>(*scene);
     }
     const Camera camera = setup.camera(sameScene ? *d->scene : *scene, request, coordinates().aspect());
     // Nothing below throws: the file is read and its scene loaded.
@@ -245,6 +294,7 @@ void Controller::loadSession(const std::filesystem::path &file) {
     d->camera = camera;
     d->visibleLayers = setup.session.visibleLayers;
     d->stack = setup.session.lenses;
+    d->compare.reset();
     d->selected = -1;
     setup.session = {};
     d->setup = std::move(setup);
@@ -261,11 +311,17 @@ void Controller::loadSession(const std::filesystem::path &file) {
     if (!sameScene && d->sceneChangedCallback) d->sceneChangedCallback();
 }
 
-const std::filesystem::path &Controller::sessionPath() const { return d->sessionPath; }
+const std::filesystem::path &Controller::sessionPath() const {
+    return d->document ? d->document->sessionPath : d->sessionPath;
+}
 
-void Controller::setRecoveryPath(const std::filesystem::path &file) { d->explicitRecoveryPath = file; }
+void Controller::setRecoveryPath(const std::filesystem::path &file) {
+    if (d->document) d->document->explicitRecoveryPath = file;
+    else d->explicitRecoveryPath = file;
+}
 
 std::filesystem::path Controller::recoveryPath() const {
+    if (d->document) return d->document->recoveryPath();
     if (!d->explicitRecoveryPath.empty()) return d->explicitRecoveryPath;
     if (!d->sessionPath.empty()) return defaultRecoveryPath(d->sessionPath);
     return {};
@@ -339,14 +395,18 @@ void Controller::Private::placeLenses() {
     context.camera = {"", camera.eye(), camera.target(), camera.up(), camera.verticalFovDegrees()};
     context.imageWidth = viewSize.x;
     context.imageHeight = viewSize.y;
-    for (const std::shared_ptr<Lens> &lens : stack.lenses()) {
-        lens->setContext(context);
-        if (!lens->hasUncommittedChanges()) continue;
-        try {
-            lens->commit();
-        } catch (const Error &) { // the render session shows it as it is in this context
+    const auto place = [&context](const LensStack &lenses) {
+        for (const std::shared_ptr<Lens> &lens : lenses.lenses()) {
+            lens->setContext(context);
+            if (!lens->hasUncommittedChanges()) continue;
+            try {
+                lens->commit();
+            } catch (const Error &) { // the render session shows it as it is in this context
+            }
         }
-    }
+    };
+    place(stack);
+    if (compare) place(compare->other);
 }
 
 glm::vec3 Controller::pointUnder(const glm::vec2 &pixel) const {
@@ -361,17 +421,19 @@ glm::vec3 Controller::pointUnder(const glm::vec2 &pixel) const {
 
 std::optional<Hit> Controller::Private::hitUnder(const glm::vec2 &pixel, Ray *shot) const {
     const ViewCoordinates view = coordinates();
-    // What the pixel shows: the lenses over it shape its ray and limit what it may hit.
+    // What the pixel shows: the lenses over it (of its side of a compare divider) shape its ray
+    // and limit what it may hit.
+    const LensStack &shown = q.compareSideAt(pixel) == CompareSide::Left ? leftStack() : rightStack();
     uint64_t lensSet = 0;
-    for (int i = 0; i < stack.size(); ++i) {
-        const std::shared_ptr<const LensSnapshot> snapshot = stack.lens(i)->snapshot();
+    for (int i = 0; i < shown.size(); ++i) {
+        const std::shared_ptr<const LensSnapshot> snapshot = shown.lens(i)->snapshot();
         if (snapshot->enabled && snapshot->region.coverage(pixel, view.viewSize().x, view.viewSize().y) >= 0.5f)
             lensSet |= uint64_t(1) << unsigned(i);
     }
     PixelPolicy policy;
     policy.ray = basePolicy();
     try {
-        if (lensSet) policy = stack.composeSet(basePolicy(), lensSet);
+        if (lensSet) policy = shown.composeSet(basePolicy(), lensSet);
     } catch (const Error &) { // too many clip volumes: the image shows this as an error too
     }
     const Ray ray = view.rayThroughPixel(camera, policy.samplePosition(pixel, view.viewSize().x, view.viewSize().y));
@@ -411,6 +473,10 @@ RayPolicy Controller::basePolicy() const { return d->basePolicy(); }
 // --- history -------------------------------------------------------------------------------------------
 
 void Controller::undo() {
+    if (d->document) {
+        d->document->owner.undo();
+        return;
+    }
     if (d->undoSteps.empty() || d->openSteps > 0) return;
     const Private::Step current = d->captureStep();
     d->restore(d->undoSteps.back());
@@ -421,6 +487,10 @@ void Controller::undo() {
 }
 
 void Controller::redo() {
+    if (d->document) {
+        d->document->owner.redo();
+        return;
+    }
     if (d->redoSteps.empty() || d->openSteps > 0) return;
     const Private::Step current = d->captureStep();
     d->restore(d->redoSteps.back());
@@ -430,16 +500,30 @@ void Controller::redo() {
     d->writeRecovery();
 }
 
-bool Controller::canUndo() const { return !d->undoSteps.empty() && d->openSteps == 0; }
-bool Controller::canRedo() const { return !d->redoSteps.empty() && d->openSteps == 0; }
-int Controller::undoCount() const { return int(d->undoSteps.size()); }
-int Controller::redoCount() const { return int(d->redoSteps.size()); }
+bool Controller::canUndo() const {
+    if (d->document) return d->document->owner.canUndo();
+    return !d->undoSteps.empty() && d->openSteps == 0;
+}
+bool Controller::canRedo() const {
+    if (d->document) return d->document->owner.canRedo();
+    return !d->redoSteps.empty() && d->openSteps == 0;
+}
+int Controller::undoCount() const { return d->document ? d->document->owner.undoCount() : int(d->undoSteps.size()); }
+int Controller::redoCount() const { return d->document ? d->document->owner.redoCount() : int(d->redoSteps.size()); }
 
 void Controller::beginEditStep() {
+    if (d->document) {
+        d->document->beginEditStep(d->viewIndex);
+        return;
+    }
     if (d->openSteps++ == 0) d->openStepStart = d->captureStep();
 }
 
 void Controller::endEditStep() {
+    if (d->document) {
+        d->document->endEditStep();
+        return;
+    }
     if (d->openSteps == 0) return;
     if (--d->openSteps == 0) d->finishStep(d->openStepStart, Private::StepKind::Other);
 }

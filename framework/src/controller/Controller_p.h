@@ -2,7 +2,9 @@
 // The state behind Controller's d-pointer, shared by the Controller*.cpp files.
 
 #include <mvcl/controller/Controller.h>
+#include <mvcl/controller/Document.h>
 #include <mvcl/controller/ViewSetup.h>
+#include <mvcl/io/ViewLink.h>
 #include <mvcl/lens/LensRegistry.h>
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/Tracer.h>
@@ -14,6 +16,7 @@
 #include <map>
 #include <optional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace mvcl {
@@ -47,12 +50,31 @@ struct Controller::Private {
     Controller &q; ///< the public object, for input that maps onto its edit functions
     const LensRegistry &registry;
 
-    // The open scene. Declared in this order so that the session dies before the tracer it
-    // renders with, and the tracer before the scene it points into.
+    // The open scene, shared by every view of a Document. Declared in this order so that the
+    // session dies before the tracer it renders with, and the tracer before the scene it
+    // points into.
     ViewSetup setup; ///< source and load options (its session part is not kept)
-    std::unique_ptr<Scene> scene;
-    std::unique_ptr<Tracer> tracer;
+    std::shared_ptr<const Scene> scene;
+    std::shared_ptr<const Tracer> tracer;
     std::unique_ptr<RenderSession> session;
+
+    /// The document this view belongs to, or none (a Controller of its own, as mvcl-render and
+    /// the one-view tests make it). With one, the history, the files and opening scenes are the
+    /// document's, and every change of camera, lenses or layers is told to it (links).
+    Document::Private *document = nullptr;
+    int viewIndex = 0;
+
+    /// Compare mode: the stack that is not being edited and the divider. `stack` is always the
+    /// stack being edited (left or right of the divider, `side`), so the lens edits and input
+    /// work on either side unchanged.
+    struct Compare {
+        LensStack other;
+        float divider = 0.5f;
+        CompareSide side = CompareSide::Left;
+    };
+    std::optional<Compare> compare;
+    const LensStack &leftStack() const { return compare && compare->side == CompareSide::Right ? compare->other : stack; }
+    const LensStack &rightStack() const { return compare->side == CompareSide::Right ? stack : compare->other; }
 
     RenderSettings settings;
     glm::ivec2 viewSize{800, 600};
@@ -99,18 +121,23 @@ struct Controller::Private {
     void sendCamera() {
         placeLenses();
         session->setCamera(camera);
+        tellDocument(LinkAspect::Camera);
     }
-    void sendLenses() {
-        placeLenses();
-        session->setLensStack(stack);
-        reportLensFaults();
-    }
+    void sendLenses();
     /// Tells the error callback, once per lens and fault, about every lens of the stack that
     /// its plugin's fault disabled (Lens::fault). Nothing without a callback: setErrorCallback
     /// reports what is there by then.
     void reportLensFaults();
     std::map<const Lens *, std::string> reportedFaults;
-    void sendBasePolicy() { session->setBasePolicy(basePolicy()); }
+    void sendBasePolicy() {
+        session->setBasePolicy(basePolicy());
+        tellDocument(LinkAspect::Layers);
+    }
+    /// Tells the document (if any) that this view's `aspect` changed, for its links.
+    void tellDocument(LinkAspect aspect);
+    /// `stack` rebuilt to hold `wanted`, reusing its lenses that are already in a wanted
+    /// state; throws (changing nothing) when a lens cannot be built.
+    LensStack rebuiltStack(const LensStack &current, const std::vector<LensState> &wanted) const;
     RenderSettings sessionSettings() const;
     /// Ends an edit that started at `before`: one undo step if anything changed, then the
     /// recovery copy.
@@ -121,6 +148,10 @@ struct Controller::Private {
     void report(const Error &error) const;
     /// Runs `apply` as one step (or as part of the open one).
     template <class Apply> void edit(StepKind kind, Apply &&apply) {
+        if (document) {
+            editInDocument(kind, apply);
+            return;
+        }
         if (openSteps > 0) {
             apply();
             return;
@@ -129,8 +160,10 @@ struct Controller::Private {
         apply();
         finishStep(before, kind);
     }
+    /// edit() in a view of a document: the document's history (Document_p.h).
+    void editInDocument(StepKind kind, const std::function<void()> &apply);
     /// Takes over a newly loaded scene; stops and replaces the RenderSession.
-    void replaceScene(std::unique_ptr<Scene> newScene, std::unique_ptr<Tracer> newTracer);
+    void replaceScene(std::shared_ptr<const Scene> newScene, std::shared_ptr<const Tracer> newTracer);
 
     // --- lenses (ControllerLenses.cpp) ---
     /// Throws mvcl::Error for an index outside the stack.

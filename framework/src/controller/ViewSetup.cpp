@@ -4,6 +4,10 @@
 #include <mvcl/core/Error.h>
 #include <mvcl/lens/LensRegistry.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <system_error>
+
 namespace mvcl {
 
 namespace {
@@ -16,7 +20,24 @@ const CameraDesc *findSceneCamera(const Scene &scene, const std::string &name) {
     return found;
 }
 
+/// The same scene source: equal text, or two names of one model file.
+bool sameSource(const std::string &a, const std::string &b) {
+    if (a == b) return true;
+    if (a.starts_with("builtin:") || b.starts_with("builtin:")) return false;
+    std::error_code ec;
+    return std::filesystem::equivalent(a, b, ec);
+}
+
 } // namespace
+
+bool ViewSetup::loadsSameScene(const ViewSetup &other) const {
+    const auto sameRule = [](const LayerRule &x, const LayerRule &y) {
+        return x.pattern == y.pattern && x.layer == y.layer && x.name == y.name;
+    };
+    return std::ranges::equal(sources(), other.sources(), sameSource) &&
+           std::ranges::equal(loadOptions.layerRules.rules(), other.loadOptions.layerRules.rules(), sameRule) &&
+           loadOptions.layerContact == other.loadOptions.layerContact;
+}
 
 std::vector<std::string> ViewSetup::sources() const {
     std::vector<std::string> all{source};
@@ -26,7 +47,15 @@ std::vector<std::string> ViewSetup::sources() const {
 
 ViewSetup ViewSetup::prepare(const ViewRequest &request, const LensRegistry &registry) {
     ViewSetup setup;
-    if (!request.sessionFile.empty()) setup.session = readLensStackFile(request.sessionFile, registry);
+    if (!request.sessionFile.empty()) {
+        setup.sessionFile = readSessionFile(request.sessionFile, registry);
+        const int views = int(setup.sessionFile->views.size());
+        if (request.sessionView < 0 || request.sessionView >= views)
+            throw Error(request.origin, "view " + std::to_string(request.sessionView) + " of " +
+                                            request.sessionFile.string() + ": the file has " + std::to_string(views) +
+                                            (views == 1 ? " view (0)" : " views (0.." + std::to_string(views - 1) + ")"));
+        setup.session = setup.sessionFile->view(request.sessionView);
+    }
     for (const std::string &spec : request.lensSpecs) {
         try { // a malformed value of the request is the request's error, not the file's
             setup.session.lenses.add(parseLensSpec(spec, registry));

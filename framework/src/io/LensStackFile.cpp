@@ -1,6 +1,9 @@
 #include <mvcl/io/LensStackFile.h>
 
 #include "JsonFile_p.h"
+#include "LensStackFile_p.h"
+
+#include <mvcl/io/SessionFile.h>
 
 #include <mvcl/core/Error.h>
 #include <mvcl/lens/LensRegistry.h>
@@ -152,6 +155,10 @@ LayerContact readLayerContact(const Json &json, const JsonLocation &where) {
     return contact;
 }
 
+} // namespace
+
+namespace detail {
+
 LensStackDescription readDescription(const Json &document, const LensRegistry &registry,
                                      const JsonLocation &where) {
     static constexpr std::string_view kTopKeys[] = {"version", "scene", "camera", "layerRules", "visibleLayers",
@@ -220,6 +227,10 @@ LensStackDescription readDescription(const Json &document, const LensRegistry &r
     return description;
 }
 
+} // namespace detail
+
+namespace {
+
 const char *shapeName(LensRegion::Shape shape) {
     switch (shape) {
     case LensRegion::Shape::Rectangle: return "rectangle";
@@ -261,6 +272,10 @@ Json lensJson(const Lens &lens) {
     return json;
 }
 
+} // namespace
+
+namespace detail {
+
 Json descriptionJson(const LensStackDescription &description) {
     Json json;
     json["version"] = kFileVersion;
@@ -298,6 +313,10 @@ Json descriptionJson(const LensStackDescription &description) {
     json["lenses"] = std::move(lenses);
     return json;
 }
+
+} // namespace detail
+
+namespace {
 
 bool sameCommittedLens(const Lens &a, const Lens &b) {
     const std::shared_ptr<const LensSnapshot> snapshotA = a.snapshot(), snapshotB = b.snapshot();
@@ -345,10 +364,31 @@ Json commandLineJson(std::string_view text) {
     return Json(std::string(text));
 }
 
-/// A model file, as opposed to builtin:NAME; its path in a file is relative to the file.
+} // namespace
+
+namespace detail {
+
 bool isSceneFile(const std::string &scene) { return !scene.empty() && !scene.starts_with("builtin:"); }
 
-} // namespace
+void resolveScenePaths(LensStackDescription &description, const std::filesystem::path &file) {
+    const auto resolve = [&file](std::string &scene) {
+        if (isSceneFile(scene) && std::filesystem::path(scene).is_relative())
+            scene = (file.parent_path() / scene).lexically_normal().string();
+    };
+    resolve(description.scene);
+    for (std::string &s : description.moreScenes) resolve(s);
+}
+
+void relocateScenePaths(LensStackDescription &description, const std::filesystem::path &file) {
+    const std::filesystem::path folder = std::filesystem::absolute(file).parent_path();
+    const auto relocate = [&folder](std::string &scene) {
+        if (isSceneFile(scene)) scene = std::filesystem::absolute(scene).lexically_proximate(folder).string();
+    };
+    relocate(description.scene);
+    for (std::string &s : description.moreScenes) relocate(s);
+}
+
+} // namespace detail
 
 bool operator==(const LensStackDescription &a, const LensStackDescription &b) {
     const auto sameRule = [](const LayerRule &x, const LayerRule &y) {
@@ -365,24 +405,20 @@ bool operator==(const LensStackDescription &a, const LensStackDescription &b) {
 
 LensStackDescription parseLensStackJson(std::string_view text, const std::string &sourceName,
                                         const LensRegistry &registry) {
-    return readDescription(parseJsonDocument(text, sourceName), registry, JsonLocation{sourceName, "", false});
+    // A session of several views: its first view, as a one-view file would hold it.
+    return parseSessionJson(text, sourceName, registry).view(0);
 }
 
 LensStackDescription readLensStackFile(const std::filesystem::path &path, const LensRegistry &registry) {
     LensStackDescription description =
         parseLensStackJson(readTextFile(path, "lens-stack file"), path.string(), registry);
-    const auto resolve = [&path](std::string &scene) {
-        if (isSceneFile(scene) && std::filesystem::path(scene).is_relative())
-            scene = (path.parent_path() / scene).lexically_normal().string();
-    };
-    resolve(description.scene);
-    for (std::string &s : description.moreScenes) resolve(s);
+    detail::resolveScenePaths(description, path);
     return description;
 }
 
 std::string lensStackJson(const LensStackDescription &description) {
     try {
-        return prettyJson(descriptionJson(description)) + "\n";
+        return prettyJson(detail::descriptionJson(description)) + "\n";
     } catch (const Json::exception &e) { // e.g. a label that is not valid UTF-8
         throw Error("lens-stack file", e.what());
     }
@@ -390,12 +426,7 @@ std::string lensStackJson(const LensStackDescription &description) {
 
 void writeLensStackFile(const std::filesystem::path &path, const LensStackDescription &description) {
     LensStackDescription relocated = description; // shares the lenses
-    const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
-    const auto relocate = [&folder](std::string &scene) {
-        if (isSceneFile(scene)) scene = std::filesystem::absolute(scene).lexically_proximate(folder).string();
-    };
-    relocate(relocated.scene);
-    for (std::string &s : relocated.moreScenes) relocate(s);
+    detail::relocateScenePaths(relocated, path);
     std::string text;
     try {
         text = lensStackJson(relocated);

@@ -62,6 +62,35 @@ uint16_t PolicyMap::dominantPolicyIndex(int x, int y) const {
     return best->policy;
 }
 
+PolicyMap PolicyMap::splice(const PolicyMap &left, const PolicyMap &right, int column, int rightLensOffset) {
+    if (left.m_width != right.m_width || left.m_height != right.m_height)
+        throw Error("policy map", "cannot splice maps of different sizes");
+    if (left.m_policies.size() + right.m_policies.size() > 0xffff)
+        throw Error("policy map", "more than 65535 distinct policies in one view");
+    PolicyMap spliced = left;
+    const uint16_t policyOffset = uint16_t(left.m_policies.size());
+    const uint32_t mixOffset = uint32_t(left.m_mixes.size());
+    const uint32_t termOffset = uint32_t(left.m_terms.size());
+    for (PixelPolicy policy : right.m_policies) {
+        policy.lensSet = rightLensOffset >= 64 ? 0 : policy.lensSet << unsigned(rightLensOffset);
+        spliced.m_policies.push_back(policy);
+    }
+    for (PolicyTerm term : right.m_terms) {
+        term.policy = uint16_t(term.policy + policyOffset);
+        spliced.m_terms.push_back(term);
+    }
+    for (const Mix &mix : right.m_mixes) spliced.m_mixes.push_back({mix.first + termOffset, mix.count});
+    for (uint32_t mix : right.m_singleMixOfPolicy) spliced.m_singleMixOfPolicy.push_back(mix + mixOffset);
+    const int split = std::clamp(column, 0, left.m_width);
+    for (int y = 0; y < left.m_height; ++y) {
+        const std::size_t row = left.offset(0, y);
+        for (int x = split; x < left.m_width; ++x)
+            spliced.m_mixOfPixel[row + std::size_t(x)] = right.m_mixOfPixel[row + std::size_t(x)] + mixOffset;
+    }
+    spliced.m_droppedClipVolumes = left.m_droppedClipVolumes + right.m_droppedClipVolumes;
+    return spliced;
+}
+
 std::size_t PolicyMap::blendedPixelCount() const {
     return std::size_t(std::count_if(m_mixOfPixel.begin(), m_mixOfPixel.end(),
                                      [this](uint32_t mix) { return m_mixes[mix].count > 1; }));

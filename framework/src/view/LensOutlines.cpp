@@ -27,4 +27,15 @@ void drawLensOutlines(const LensStack &stack, Framebuffer &image) {
     }
 }
 
+void drawLensOutlines(const LensStack &left, const LensStack &right, float dividerX, Framebuffer &image) {
+    Framebuffer rightImage = image;
+    drawLensOutlines(left, image);
+    drawLensOutlines(right, rightImage);
+    const int column = std::clamp(int(std::lround(dividerX * float(image.width()))), 0, image.width());
+    for (int y = 0; y < image.height(); ++y) {
+        for (int x = column; x < image.width(); ++x) image.at(x, y) = rightImage.at(x, y);
+        if (column > 0) image.at(column - 1, y) = glm::vec3(1.f);
+    }
+}
+
 } // namespace mvcl

@@ -2,8 +2,11 @@
 
 #include <mvcl/core/Error.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 
 namespace mvcl {
 
@@ -44,6 +47,16 @@ void RenderSession::setCamera(const Camera &camera) {
 void RenderSession::setLensStack(const LensStack &stack) {
     std::lock_guard lock(d->stagedMutex);
     d->stagedLenses = stack.lenses();
+    d->stagedRightStart = -1;
+    d->edited();
+}
+
+void RenderSession::setLensStacks(const LensStack &left, const LensStack &right, float dividerX) {
+    std::lock_guard lock(d->stagedMutex);
+    d->stagedLenses = left.lenses();
+    d->stagedLenses.insert(d->stagedLenses.end(), right.lenses().begin(), right.lenses().end());
+    d->stagedRightStart = left.size();
+    d->stagedDivider = std::clamp(dividerX, 0.f, 1.f);
     d->edited();
 }
 
@@ -118,7 +131,22 @@ void RenderSession::start() {
                 d->wake.wait(lock, [this] { return d->stopping.load() || d->hasWorkLocked(); });
                 if (d->stopping) return;
             }
-            d->renderPass();
+            if (!d->gate) {
+                d->renderPass();
+                continue;
+            }
+            bool preempted = false;
+            {
+                std::lock_guard gateLock(d->gate->mutex);
+                d->gate->running = &d->seat;
+                preempted = d->renderPass().wasCancelled && d->seat.refining.load();
+                d->seat.refining = false;
+                d->gate->running = nullptr;
+            }
+            // Let a session waiting at the gate take it before this one takes it again; first of
+            // all the one whose edit cancelled this refinement.
+            if (preempted) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            else std::this_thread::yield();
         }
     });
 }
@@ -133,6 +161,18 @@ void RenderSession::stop() {
     }
     d->thread.join();
 }
+
+void RenderSession::setPassGate(std::shared_ptr<RenderPassGate> gate) { d->gate = std::move(gate); }
+
+std::shared_ptr<RenderPassGate> RenderSession::makePassGate() { return std::make_shared<RenderPassGate>(); }
+
+void RenderSession::setRefinementHeld(bool held) {
+    std::lock_guard lock(d->stagedMutex);
+    d->refinementHeld = held;
+    d->wake.notify_all();
+}
+
+bool RenderSession::isRefinementHeld() const { return d->refinementHeld.load(); }
 
 bool RenderSession::isRunning() const { return d->thread.joinable(); }
 

@@ -84,8 +84,19 @@ ConvergenceStats RenderSession::Private::summarise() const {
 
 std::vector<LensCost> RenderSession::Private::lensCosts(const std::vector<PolicyCost> &perPolicy) const {
     LensStack stack;
-    for (const detail::LensState &l : lenses) stack.add(l.lens);
+    // In compare mode the right stack's lenses follow the left's (their lens-set bits too);
+    // lenses past the 64th have no bit to be charged by.
+    for (const detail::LensState &l : lenses)
+        if (stack.size() < LensStack::kMaxLenses) stack.add(l.lens);
     return stack.costs(map, perPolicy);
+}
+
+PolicyMap RenderSession::Private::composeStacks(const std::vector<std::shared_ptr<Lens>> &lensList, int splitAt,
+                                                int column, const LensContext &context, const RayPolicy &base) const {
+    LensStack left, right;
+    for (std::size_t i = 0; i < lensList.size(); ++i) (splitAt >= 0 && int(i) >= splitAt ? right : left).add(lensList[i]);
+    if (splitAt < 0) return left.compose(context, base, threads());
+    return PolicyMap::splice(left.compose(context, base, threads()), right.compose(context, base, threads()), column, splitAt);
 }
 
 bool RenderSession::Private::hasWorkLocked() const {
@@ -93,6 +104,7 @@ bool RenderSession::Private::hasWorkLocked() const {
     if (stagedLenses.size() != appliedSnapshots.size()) return true;
     for (size_t i = 0; i < stagedLenses.size(); ++i)
         if (stagedLenses[i]->snapshot().get() != appliedSnapshots[i]) return true;
+    if (refinementHeld.load() && onlyRefinementLeft.load()) return passRunning.load();
     return needsSamples.load() || passRunning.load();
 }
 
@@ -457,11 +469,15 @@ RenderPassStats RenderSession::Private::renderPass() {
     RayPolicy base;
     uint64_t newBaseVersion;
     RenderSettings newSettings;
+    int newRightStart;
+    float newDivider;
     {
         std::lock_guard lock(stagedMutex);
         if (!hasWorkLocked()) return stats;
         newCamera = stagedCamera;
         lensList = stagedLenses;
+        newRightStart = stagedRightStart;
+        newDivider = stagedDivider;
         base = stagedBase;
         newBaseVersion = stagedBaseVersion;
         newSettings = stagedSettings;
@@ -489,7 +505,10 @@ RenderPassStats RenderSession::Private::renderPass() {
     // 2. What the edits invalidate.
     const bool restartAll = !initialised || changesSamples(newSettings, settings);
     const bool cameraMoved = initialised && !sameCamera(newCamera, camera);
-    const bool lensesChanged = !initialised || newBaseVersion != baseVersion || !detail::sameLenses(newLenses, lenses);
+    const int newColumn = newRightStart < 0 ? 0 : int(std::lround(newDivider * float(newSettings.width)));
+    const bool dividerMoved = newRightStart >= 0 && newColumn != dividerColumn;
+    const bool lensesChanged = !initialised || newBaseVersion != baseVersion || newRightStart != rightStart ||
+                               dividerMoved || !detail::sameLenses(newLenses, lenses);
     const bool budgetChanged = initialised && changesBudget(newSettings, settings);
     const RenderSettings oldSettings = settings;
     settings = newSettings;
@@ -498,14 +517,16 @@ RenderPassStats RenderSession::Private::renderPass() {
 
     if (lensesChanged || restartAll) {
         const Clock::time_point composeStart = Clock::now();
-        LensStack stack;
-        for (const std::shared_ptr<Lens> &lens : lensList) stack.add(lens);
-        PolicyMap newMap = stack.compose(context, base, threads());
+        PolicyMap newMap = composeStacks(lensList, newRightStart, newColumn, context, base);
         if (!restartAll && !cameraMoved) {
-            const PixelRect area = clipTo(newBaseVersion != baseVersion
-                                              ? PixelRect{0, 0, width(), height()}
-                                              : detail::changedArea(lenses, newLenses, width(), height()),
-                                          width(), height());
+            PixelRect area = newBaseVersion != baseVersion || newRightStart != rightStart
+                                 ? PixelRect{0, 0, width(), height()}
+                                 : detail::changedArea(lenses, newLenses, width(), height());
+            // The strip the divider passed changes stack; markChangedPixels keeps only those of
+            // its pixels whose policies differ between the two.
+            if (dividerMoved)
+                area = unite(area, {std::min(newColumn, dividerColumn), 0, std::max(newColumn, dividerColumn), height()});
+            area = clipTo(area, width(), height());
             if (!area.isEmpty()) {
                 stats.pixelsRestarted = detail::markChangedPixels(map, newMap, area, changed, threads());
                 map = std::move(newMap);
@@ -520,6 +541,8 @@ RenderPassStats RenderSession::Private::renderPass() {
             map = std::move(newMap);
         }
         lenses = std::move(newLenses);
+        rightStart = newRightStart;
+        dividerColumn = newColumn;
         baseVersion = newBaseVersion;
         stats.composeMilliseconds = millisecondsBetween(composeStart, Clock::now());
     }
@@ -533,6 +556,8 @@ RenderPassStats RenderSession::Private::renderPass() {
         updateActive({0, 0, width(), height()});
     }
     initialised = true;
+    // A pass that only adds samples: another session's edit may cancel it (RenderPassGate).
+    seat.refining = !restartAll && !cameraMoved && !lensesChanged && !budgetChanged && !fullPassPending;
 
     // 3. Preview while the camera moves, else trace.
     const int divider = cameraMoved ? previewDivider() : 1;
@@ -552,6 +577,7 @@ RenderPassStats RenderSession::Private::renderPass() {
         convergenceResetTime = resetTime;
         ++passes;
     }
+    onlyRefinementLeft = !fullPassPending;
     passRunning = false;
     return stats;
 }

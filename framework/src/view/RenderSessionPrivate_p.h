@@ -53,6 +53,17 @@ inline bool sameCamera(const Camera &a, const Camera &b) {
 
 } // namespace detail
 
+/// What sessions sharing a gate know of each other: who runs a pass, and whether that pass only
+/// refines (then another session's edit cancels it).
+struct RenderPassGate {
+    struct Seat {
+        std::atomic<bool> *cancel = nullptr;
+        std::atomic<bool> refining{false};
+    };
+    std::mutex mutex;
+    std::atomic<Seat *> running{nullptr};
+};
+
 struct RenderSession::Private {
     using Clock = detail::Clock;
 
@@ -66,7 +77,9 @@ struct RenderSession::Private {
     mutable std::mutex stagedMutex;
     std::condition_variable wake;
     Camera stagedCamera;
-    std::vector<std::shared_ptr<Lens>> stagedLenses;
+    std::vector<std::shared_ptr<Lens>> stagedLenses; ///< compare mode: the left stack, then the right
+    int stagedRightStart = -1; ///< index of the right stack's first lens in stagedLenses; -1: no compare
+    float stagedDivider = 0.5f;
     RayPolicy stagedBase;
     uint64_t stagedBaseVersion = 0;
     RenderSettings stagedSettings;
@@ -80,6 +93,11 @@ struct RenderSession::Private {
     /// A pass is between taking the edits and publishing its pixels: hasWork() stays true, so
     /// "no work" means the display shows everything.
     std::atomic<bool> passRunning{false};
+    std::atomic<bool> refinementHeld{false};
+    std::shared_ptr<RenderPassGate> gate; ///< set before start(); may be null
+    RenderPassGate::Seat seat{&cancel};
+    /// The image is complete at full resolution: what is left is refinement (set by passes).
+    std::atomic<bool> onlyRefinementLeft{false};
 
     // --- The accumulated image: the thread that runs passes only. ---
     bool initialised = false;
@@ -87,6 +105,8 @@ struct RenderSession::Private {
     RenderSettings settings;
     uint64_t baseVersion = 0;
     std::vector<detail::LensState> lenses;
+    int rightStart = -1; ///< as stagedRightStart, for `lenses`
+    int dividerColumn = 0; ///< compare mode: the first pixel column of the right stack
     PolicyMap map{1, 1};
     std::vector<detail::PixelSamples> samples;
     std::vector<float> errors;
@@ -156,6 +176,10 @@ struct RenderSession::Private {
     void edited() {
         ++editCount;
         cancel.store(true, std::memory_order_relaxed);
+        // Refinement of another session sharing the gate yields to this edit.
+        if (gate)
+            if (RenderPassGate::Seat *other = gate->running.load(); other && other != &seat && other->refining.load())
+                other->cancel->store(true, std::memory_order_relaxed);
         wake.notify_all();
     }
     bool hasWorkLocked() const;
@@ -185,6 +209,10 @@ struct RenderSession::Private {
     RenderPassStats renderPass();
     ConvergenceStats summarise() const;
     std::vector<LensCost> lensCosts(const std::vector<PolicyCost> &perPolicy) const;
+    /// The policy map of the stack, or in compare mode (splitAt ≥ 0: the right stack's first
+    /// lens) of the two stacks spliced at pixel column `column`.
+    PolicyMap composeStacks(const std::vector<std::shared_ptr<Lens>> &lensList, int splitAt, int column,
+                            const LensContext &context, const RayPolicy &base) const;
 };
 
 } // namespace mvcl

@@ -1,9 +1,12 @@
 #pragma once
 /// \file Controller.h
 /// The C of MVCL: the editable state of one view and the input that edits it, without a
-/// window system. A Controller owns the view's scene, tracer and RenderSession, the camera, the
-/// lens stack, the visible layers and the selected lens; every edit goes to the RenderSession
-/// at once, is one undo step, and is copied to a recovery file.
+/// window system. A Controller owns the view's RenderSession, the camera, the lens stack, the
+/// visible layers and the selected lens, and shares the scene and tracer: a Controller made on
+/// its own has them to itself, the views of a Document (Document.h) share the document's. Every
+/// edit goes to the RenderSession at once, is one undo step, and is copied to a recovery file;
+/// in a document the history, the files and opening scenes are the document's (undo(),
+/// saveSession(), openScene(), ... act on it), and links copy edits to other views.
 ///
 /// The viewer turns window-system callbacks into InputEvents and calls handle(); panels call
 /// the edit functions (addLens, setLensProperty, setLayerVisibility, ...). Everything here
@@ -106,6 +109,11 @@ enum class LensFit : uint8_t {
 
 /// The gesture in progress.
 enum class DragKind : uint8_t { None, MoveLens, ResizeLens, Orbit, Pan, Gizmo };
+
+/// Which stack of a view in compare mode is being edited: left or right of the divider.
+enum class CompareSide : uint8_t { Left, Right };
+
+class Document;
 
 class MVCL_EXPORT Controller {
 public:
@@ -253,6 +261,30 @@ public:
     /// Where a duplicate goes relative to its original (normalised).
     static constexpr float kDuplicateOffset = 0.03f;
 
+    // --- compare mode (ControllerCompare.cpp) --------------------------------------------------------
+    // The view split by a vertical divider: the lens stack left of it, a second stack right of
+    // it, one camera. Turning it on copies the stack to the right side. The lens functions
+    // above (lensStack(), addLens(), hitTest(), ...) act on the side being edited
+    // (compareSide()); state() holds the left stack as `lenses` and the right one in
+    // `compare`. Turning it on or off and moving the divider are edit steps; choosing the side
+    // is not (like the selection).
+    void setCompareEnabled(bool enabled);
+    bool isCompareEnabled() const;
+    /// Normalised x of the divider, 0..1 (0.5 when compare mode is off).
+    float compareDivider() const;
+    /// Clamped to 0..1; nothing when compare mode is off.
+    void setCompareDivider(float x);
+    CompareSide compareSide() const;
+    /// Deselects when the side changes; nothing when compare mode is off.
+    void setCompareSide(CompareSide side);
+    /// The side of the divider `pixel` (framebuffer) is on; Left when compare mode is off.
+    CompareSide compareSideAt(const glm::vec2 &pixel) const;
+    /// Within grab distance (kHandleGrabRadius × contentScale) of the divider.
+    bool isOnCompareDivider(const glm::vec2 &pixel) const;
+    /// The stacks as they render (compare mode off: lensStack() and an empty one).
+    const LensStack &leftLensStack() const;
+    const LensStack &rightLensStack() const;
+
     // --- input ------------------------------------------------------------------------------------
     /// Applies an event. Returns true when the view's state changed (redraw the overlays).
     bool handle(const InputEvent &event);
@@ -279,6 +311,10 @@ public:
     void setSceneChangedCallback(std::function<void()> callback);
 
 private:
+    friend class Document;
+    /// A view of `document`'s open scene (Document.cpp).
+    Controller(Document &document, int index, const Camera &camera, const RenderSettings &settings);
+
     struct MVCL_HIDDEN Private;
     std::unique_ptr<Private> d;
 };

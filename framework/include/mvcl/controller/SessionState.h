@@ -9,15 +9,25 @@
 #include <mvcl/view/Camera.h>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace mvcl {
+
+/// A view in compare mode: the stack right of the divider, and where the divider stands.
+struct CompareState {
+    std::vector<LensState> lenses; ///< bottom → top
+    float divider = 0.5f;          ///< normalised x
+
+    bool operator==(const CompareState &other) const = default;
+};
 
 struct SessionState {
     Camera camera; ///< scene space
     /// Layers primary rays may hit outside every lens (RayPolicy primary layerMask).
     uint32_t visibleLayers = kAllLayers;
-    std::vector<LensState> lenses; ///< bottom → top
+    std::vector<LensState> lenses; ///< bottom → top (left of the divider in compare mode)
+    std::optional<CompareState> compare; ///< compare mode: the right-hand side
 
     bool operator==(const SessionState &other) const = default;
 };

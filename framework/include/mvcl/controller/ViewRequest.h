@@ -25,6 +25,9 @@ struct ViewRequest {
     /// Lens-stack (session) file: lenses, and the scene, camera and layer rules unless given
     /// here. Empty = none.
     std::filesystem::path sessionFile;
+    /// Which view of a session file of several views is this view: its camera, visible layers
+    /// and lenses (0 = the first; a Document makes one view of each).
+    int sessionView = 0;
     /// One lens each, "type:key=value,..." (parseLensSpec), stacked above the file's lenses.
     std::vector<std::string> lensSpecs;
     /// How to load the scene. Its layer rules are the user's: they come before the session

@@ -2,7 +2,7 @@
 /// \file ViewSetup.h
 /// How every app sets up a view from a ViewRequest, shared by mvcl-render and the viewer:
 ///
-/// 1. prepare(): read the session file, stack the request's lenses above the file's, pick the
+/// 1. prepare(): read the session file (its view request.sessionView), stack the request's lenses above the file's, pick the
 ///    scene (the request's, else the file's) and merge the layer rules (the request's first,
 ///    so they win over the file's);
 /// 2. the app loads the scene: loadScene(setup.sources(), setup.loadOptions);
@@ -17,8 +17,10 @@
 #include <mvcl/controller/ViewRequest.h>
 #include <mvcl/io/LensStackFile.h>
 #include <mvcl/io/SceneLoader.h>
+#include <mvcl/io/SessionFile.h>
 #include <mvcl/view/Camera.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +40,8 @@ struct MVCL_EXPORT ViewSetup {
     /// The session file as read (or empty), with the request's lenses on top; its camera is
     /// still in world units or names a scene camera.
     LensStackDescription session;
+    /// The whole session file as read (all its views, links and layout), when one was named.
+    std::optional<SessionDescription> sessionFile;
 
     /// `source` followed by `moreSources`: what loadScene reads.
     std::vector<std::string> sources() const;
@@ -58,6 +62,10 @@ struct MVCL_EXPORT ViewSetup {
                                   uint32_t visibleLayers) const;
     /// The same with the session's own lenses and visible layers.
     LensStackDescription describe(const Scene &scene, const Camera &camera) const;
+
+    /// The same scene as `other` would load: the same files (two names of one file count as
+    /// one), layer rules and contact tolerance. Loading a session keeps the scene then.
+    bool loadsSameScene(const ViewSetup &other) const;
 
     /// The field of view a framed view uses when nobody gives one.
     static constexpr float kDefaultVerticalFovDegrees = 40.f;

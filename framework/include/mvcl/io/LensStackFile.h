@@ -72,7 +72,8 @@ struct LensStackDescription {
 MVCL_EXPORT bool operator==(const LensStackDescription &a, const LensStackDescription &b);
 
 /// Reads and commits a lens-stack file; a relative scene path comes back resolved against the
-/// file's folder. Throws mvcl::Error(path, "json.path: problem").
+/// file's folder. A session file of several views (version 2, SessionFile.h) reads as its first
+/// view. Throws mvcl::Error(path, "json.path: problem").
 MVCL_EXPORT LensStackDescription readLensStackFile(const std::filesystem::path &path,
                                        const LensRegistry &registry);
 /// The same from text; errors name `sourceName` in place of a file.

@@ -64,6 +64,13 @@ public:
     int droppedClipVolumes() const { return m_droppedClipVolumes; }
     void setDroppedClipVolumes(int count) { m_droppedClipVolumes = count; }
 
+    /// Two maps of one size side by side (a view comparing two lens stacks): columns x <
+    /// `column` from `left`, the others from `right`. The table holds left's policies, then
+    /// right's, whose lens sets are shifted up by `rightLensOffset` bits (lenses of the right
+    /// stack counted after the left's; bits shifted past 64 are dropped). Throws mvcl::Error
+    /// when the sizes differ or the tables together pass 65535 policies.
+    static PolicyMap splice(const PolicyMap &left, const PolicyMap &right, int column, int rightLensOffset);
+
     /// Mixes by index, for loops that walk whole rows (comparing maps, rendering): the mix
     /// index of every pixel of row y, and a mix's terms.
     std::span<const uint32_t> rowMixIndices(int y) const {

@@ -41,6 +41,7 @@ namespace mvcl {
 
 class PolicyMap;
 class Tracer;
+struct RenderPassGate;
 
 /// What a pass did.
 enum class PassKind : uint8_t {
@@ -100,6 +101,13 @@ public:
     /// the start of each pass; after committing a lens of the stack, call setLensStack again so
     /// that an idle or background session looks.
     void setLensStack(const LensStack &stack);
+    /// Compare mode: `left` renders left of the divider, `right` right of it, both under the
+    /// same camera and base policy. `dividerX` is the divider's normalised x (0..1); pixel
+    /// columns x < round(dividerX · width) are left's. Moving the divider re-traces only the
+    /// pixels between the old and the new column whose policies differ between the stacks.
+    /// setLensStack() ends compare mode. Per-lens costs (RenderPassStats::perLens) list the
+    /// left stack's lenses, then the right's.
+    void setLensStacks(const LensStack &left, const LensStack &right, float dividerX);
     /// The policy of pixels outside every lens (layer visibility, shading defaults).
     void setBasePolicy(const RayPolicy &policy);
     /// Size, seed and tile changes restart every pixel; sampling budgets keep the samples.
@@ -128,6 +136,19 @@ public:
     /// Cancels the pass in flight and joins the background thread.
     void stop();
     bool isRunning() const;
+    /// While held, the session runs only the passes its edits ask for (preview, full
+    /// resolution, retrace); more samples for an image already complete at full resolution
+    /// wait until it is released. Sessions that share the worker pool use it to let one of
+    /// them (the focused view of several) refine first.
+    void setRefinementHeld(bool held);
+    bool isRefinementHeld() const;
+    /// Sessions given one gate (makePassGate()) run their background passes one at a time, so
+    /// that together they keep to the worker pool's threads instead of each adding a thread of
+    /// its own (the views of a Document share one). An edit of one session cancels another's
+    /// pass that only refines (its finished pixels are kept; it runs again afterwards), so edits
+    /// do not wait behind refinement. Set it before start().
+    void setPassGate(std::shared_ptr<RenderPassGate> gate);
+    static std::shared_ptr<RenderPassGate> makePassGate();
     /// Stats of the last finished pass (any thread).
     RenderPassStats lastPass() const;
     /// Number of passes finished since construction (any thread).
