@@ -57,9 +57,6 @@ private:
     void handleViewerKeys();
     void handle(const InputEvent &event);
     void report(const std::string &message);
-    /// At start: a recovery copy newer than its session (or of a session never saved) means the
-    /// last run ended before saving; say where it is and how to open it.
-    void offerRecovery();
     void writeScreenshot(const std::string &file);
     void saveSession(const std::string &file);
     void openFile(const std::string &file);
@@ -98,6 +95,12 @@ private:
     /// Hands the view's image (lens outlines, no panels) to the recorder.
     void recordFrame();
     void stopRecording();
+    // ViewerRecovery.cpp
+    /// At start: a recovery copy newer than its session (or of a session never saved) means the
+    /// last run ended before saving; a modal offers to restore or discard it.
+    void offerRecovery();
+    void drawRecoveryOffer();
+    void answerRecoveryOffer(bool restore);
     // ViewerScripting.cpp
     void runScript();
     bool runCommand(const ScriptCommand &command);
@@ -120,6 +123,7 @@ private:
     bool m_showHelp = false;
     bool m_editStepOpen = false;      ///< a panel widget is being dragged: one undo step
     bool m_openPopupRequested = false;
+    bool m_recoveryOffered = false;   ///< the Restore / Discard modal is waiting for an answer
     std::string m_openPath;
     std::deque<std::string> m_messages;
     glm::vec2 m_pointer{-1.f};        ///< framebuffer pixels; negative when outside the view

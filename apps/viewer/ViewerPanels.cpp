@@ -42,6 +42,7 @@ void Viewer::drawUi() {
     drawPanels();
     drawHelpOverlay();
     drawOpenPopup();
+    drawRecoveryOffer();
     drawMessages();
     if (m_editStepOpen && !ImGui::IsAnyItemActive()) {
         m_controller->endEditStep();

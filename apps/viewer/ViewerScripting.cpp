@@ -123,6 +123,10 @@ bool Viewer::runCommand(const ScriptCommand &c) {
     } else if (name == "set-layer") {
         if (c.word(1) != "visible" && c.word(1) != "hidden") fail("expects visible or hidden");
         m_controller->setLayerVisibility(c.integer(0), c.word(1) == "visible" ? LayerVisibility::Visible : LayerVisibility::Hidden);
+    } else if (name == "recovery") {
+        if (c.word(0) != "restore" && c.word(0) != "discard") fail("expects restore or discard");
+        if (!m_recoveryOffered) fail("no recovery copy was offered at start");
+        answerRecoveryOffer(c.word(0) == "restore");
     } else if (name == "wait-converged") {
         // Idle, and the last published pixels are on screen.
         if (session.hasWork() || !m_imageCurrent) return false;

@@ -95,7 +95,8 @@ void Controller::Private::finishStep(const Step &before, StepKind kind) {
     }
     redoSteps.clear();
     lastStep = kind;
-    writeRecovery();
+    stateTouched = true; // a label changes no rendering, so no send*() said so
+    passRecovery();
 }
 
 void Controller::Private::clearHistory() {
@@ -104,14 +105,31 @@ void Controller::Private::clearHistory() {
     lastStep = StepKind::Other;
 }
 
-void Controller::Private::writeRecovery() {
-    const std::filesystem::path path = q.recoveryPath();
-    if (path.empty()) return;
+void Controller::Private::passRecovery() {
+    recovery.setPath(q.recoveryPath());
+    const RecoveryWriter::Describe describe = [this] { return q.description(); };
     try {
-        writeLensStackFile(path, q.description());
+        if (stateTouched) {
+            stateTouched = false;
+            unsaved = true;
+            recovery.sessionChanged(describe);
+        } else {
+            recovery.update(describe);
+        }
+        lastRecoveryError.clear();
     } catch (const Error &e) {
-        report(Error(e.source(), "recovery copy not written: " + e.problem()));
+        const Error error(e.source(), "recovery copy not written: " + e.problem());
+        if (error.what() == lastRecoveryError) return; // tried again one interval later: said already
+        lastRecoveryError = error.what();
+        report(error);
     }
+}
+
+void Controller::Private::markSaved() {
+    stateTouched = false;
+    unsaved = false;
+    recovery.setPath(q.recoveryPath());
+    recovery.clearPending();
 }
 
 void Controller::Private::reportLensFaults() {
@@ -164,6 +182,7 @@ Controller::Controller(const LensRegistry &registry, const ViewRequest &request,
     d->setup = std::move(setup);
     d->replaceScene(std::move(scene), std::move(tracer));
     if (!request.sessionFile.empty()) d->sessionPath = request.sessionFile;
+    d->markSaved(); // what was opened is not a change to recover; an old copy stays for hasRecovery()
 }
 
 Controller::~Controller() {
@@ -202,7 +221,7 @@ void Controller::openScenes(const std::vector<std::string> &sources, const Scene
     d->visibleLayers = kAllLayers;
     d->replaceScene(std::move(scene), std::move(tracer));
     d->clearHistory();
-    d->writeRecovery();
+    d->passRecovery(); // another model is a change of the session
     if (d->sceneChangedCallback) d->sceneChangedCallback();
 }
 
@@ -214,7 +233,13 @@ LensStackDescription Controller::description() const {
 
 void Controller::saveSession(const std::filesystem::path &file) {
     writeLensStackFile(file, description());
+    // Saved: the copy of the unsaved state has nothing left to recover, where it was and where
+    // the new session path puts it.
+    d->recovery.setPath(recoveryPath());
+    d->recovery.discard();
     d->sessionPath = file;
+    d->markSaved();
+    d->recovery.discard();
 }
 
 void Controller::loadSession(const std::filesystem::path &file) {
@@ -257,7 +282,7 @@ void Controller::loadSession(const std::filesystem::path &file) {
     }
     d->sessionPath = file;
     d->clearHistory();
-    d->writeRecovery();
+    d->markSaved();
     if (!sameScene && d->sceneChangedCallback) d->sceneChangedCallback();
 }
 
@@ -269,6 +294,54 @@ std::filesystem::path Controller::recoveryPath() const {
     if (!d->explicitRecoveryPath.empty()) return d->explicitRecoveryPath;
     if (!d->sessionPath.empty()) return defaultRecoveryPath(d->sessionPath);
     return {};
+}
+
+void Controller::setRecoveryInterval(std::chrono::milliseconds interval) { d->recovery.setInterval(interval); }
+std::chrono::milliseconds Controller::recoveryInterval() const { return d->recovery.interval(); }
+void Controller::updateRecovery() { d->passRecovery(); }
+bool Controller::hasUnsavedChanges() const { return d->unsaved || d->stateTouched; }
+
+void Controller::finishRecovery() {
+    d->passRecovery();
+    if (!hasUnsavedChanges()) {
+        d->recovery.discard();
+        return;
+    }
+    try {
+        d->recovery.flush([this] { return description(); });
+    } catch (const Error &e) {
+        d->report(Error(e.source(), "recovery copy not written: " + e.problem()));
+    }
+}
+
+bool Controller::hasRecovery() const {
+    namespace fs = std::filesystem;
+    const fs::path recovery = recoveryPath();
+    std::error_code ec;
+    if (recovery.empty() || !fs::is_regular_file(recovery, ec)) return false;
+    const fs::file_time_type recovered = fs::last_write_time(recovery, ec);
+    if (ec) return false;
+    if (d->sessionPath.empty() || !fs::is_regular_file(d->sessionPath, ec)) return true; // never saved
+    const fs::file_time_type saved = fs::last_write_time(d->sessionPath, ec);
+    return ec || recovered > saved;
+}
+
+void Controller::restoreRecovery() {
+    const std::filesystem::path recovery = recoveryPath();
+    const std::filesystem::path session = d->sessionPath;
+    const std::filesystem::path explicitPath = d->explicitRecoveryPath;
+    loadSession(recovery);
+    // The session is still the one the user opened; the restored state is not saved in it yet,
+    // and the copy holds it until it is.
+    d->sessionPath = session;
+    d->explicitRecoveryPath = explicitPath;
+    d->recovery.setPath(recoveryPath());
+    d->unsaved = true;
+}
+
+void Controller::discardRecovery() {
+    d->recovery.setPath(recoveryPath());
+    d->recovery.discard();
 }
 
 std::filesystem::path Controller::defaultRecoveryPath(const std::filesystem::path &sessionFile) {
@@ -411,7 +484,8 @@ void Controller::undo() {
     d->undoSteps.pop_back();
     d->redoSteps.push_back(current);
     d->lastStep = Private::StepKind::Other;
-    d->writeRecovery();
+    d->stateTouched = true;
+    d->passRecovery();
 }
 
 void Controller::redo() {
@@ -421,7 +495,8 @@ void Controller::redo() {
     d->redoSteps.pop_back();
     d->undoSteps.push_back(current);
     d->lastStep = Private::StepKind::Other;
-    d->writeRecovery();
+    d->stateTouched = true;
+    d->passRecovery();
 }
 
 bool Controller::canUndo() const { return !d->undoSteps.empty() && d->openSteps == 0; }

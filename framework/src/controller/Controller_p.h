@@ -2,6 +2,7 @@
 // The state behind Controller's d-pointer, shared by the Controller*.cpp files.
 
 #include <mvcl/controller/Controller.h>
+#include <mvcl/controller/RecoveryWriter.h>
 #include <mvcl/controller/ViewSetup.h>
 #include <mvcl/lens/LensRegistry.h>
 #include <mvcl/model/Scene.h>
@@ -75,6 +76,10 @@ struct Controller::Private {
 
     std::filesystem::path sessionPath;
     std::filesystem::path explicitRecoveryPath;
+    RecoveryWriter recovery;
+    bool stateTouched = false;    ///< send*() ran since the recovery writer last heard of it
+    bool unsaved = false;         ///< the state changed since the session was loaded or saved
+    std::string lastRecoveryError; ///< reported once, not at every retry
     std::function<void(const Error &)> errorCallback;
     std::function<void()> sceneChangedCallback;
 
@@ -89,11 +94,15 @@ struct Controller::Private {
     /// whose contribution that changes (LensContext), so that their snapshots (picking, files)
     /// agree with the image. A lens that cannot commit in the new context keeps its snapshot.
     void placeLenses();
+    // Every change of the session state goes through these three, drag moves included; they
+    // mark it for the recovery copy (passRecovery).
     void sendCamera() {
+        stateTouched = true;
         placeLenses();
         session->setCamera(camera);
     }
     void sendLenses() {
+        stateTouched = true;
         placeLenses();
         session->setLensStack(stack);
         reportLensFaults();
@@ -103,13 +112,21 @@ struct Controller::Private {
     /// reports what is there by then.
     void reportLensFaults();
     std::map<const Lens *, std::string> reportedFaults;
-    void sendBasePolicy() { session->setBasePolicy(basePolicy()); }
+    void sendBasePolicy() {
+        stateTouched = true;
+        session->setBasePolicy(basePolicy());
+    }
     RenderSettings sessionSettings() const;
-    /// Ends an edit that started at `before`: one undo step if anything changed, then the
-    /// recovery copy.
+    /// Ends an edit that started at `before`: one undo step if anything changed; the change
+    /// goes to the recovery writer.
     void finishStep(const Step &before, StepKind kind);
     void clearHistory();
-    void writeRecovery();
+    /// Tells the recovery writer about changes since the last call (it writes when due) and
+    /// gives it a pending write that is due. Called after every edit step and once a frame
+    /// (Controller::updateRecovery); a failed write goes to the error callback, once.
+    void passRecovery();
+    /// The state as it is now is the session file's (loaded or saved): nothing to recover.
+    void markSaved();
     /// The error callback, or a throw without one.
     void report(const Error &error) const;
     /// Runs `apply` as one step (or as part of the open one).

@@ -3,7 +3,7 @@
 /// The C of MVCL: the editable state of one view and the input that edits it, without a
 /// window system. A Controller owns the view's scene, tracer and RenderSession, the camera, the
 /// lens stack, the visible layers and the selected lens; every edit goes to the RenderSession
-/// at once, is one undo step, and is copied to a recovery file.
+/// at once, is one undo step, and reaches a recovery file within a few seconds (RecoveryWriter).
 ///
 /// The viewer turns window-system callbacks into InputEvents and calls handle(); panels call
 /// the edit functions (addLens, setLensProperty, setLayerVisibility, ...). Everything here
@@ -62,6 +62,7 @@
 
 #include <glm/vec2.hpp>
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -132,9 +133,32 @@ public:
     /// Empty until a session is loaded or saved.
     const std::filesystem::path &sessionPath() const;
     /// Where the recovery copy goes: the path given here, else "<session>.recovery.json" beside
-    /// the session file, else nowhere. It is rewritten (atomically) after every edit step.
+    /// the session file, else nowhere. Every change of the state, drag moves included, goes to a
+    /// RecoveryWriter: written atomically at most once per recoveryInterval(), the last change
+    /// by updateRecovery() once the interval has passed. Saving the session removes the copy.
     void setRecoveryPath(const std::filesystem::path &file);
     std::filesystem::path recoveryPath() const;
+    /// Least time between two writes of the recovery copy (RecoveryWriter::kDefaultInterval, 2 s);
+    /// zero writes after every step.
+    void setRecoveryInterval(std::chrono::milliseconds interval);
+    std::chrono::milliseconds recoveryInterval() const;
+    /// Once a frame: changes since the last call (drag moves) and a pending write that is due
+    /// go to the recovery copy.
+    void updateRecovery();
+    /// At a clean exit: unsaved changes are written to the recovery copy now (the next start
+    /// offers them); with none, the copy is removed.
+    void finishRecovery();
+    /// The state changed since the session was opened, loaded or saved.
+    bool hasUnsavedChanges() const;
+    /// A recovery copy newer than the session file, or of a session never saved: the last run
+    /// ended with unsaved changes. Meant for the start, before any edit.
+    bool hasRecovery() const;
+    /// Loads the recovery copy as loadSession() does, but the session path and the recovery
+    /// path stay as they were; the restored state is unsaved (the copy keeps it until the
+    /// session is saved). Throws mvcl::Error for a broken copy and changes nothing.
+    void restoreRecovery();
+    /// Removes the recovery copy.
+    void discardRecovery();
     /// "stack.json" → "stack.recovery.json".
     static std::filesystem::path defaultRecoveryPath(const std::filesystem::path &sessionFile);
 
