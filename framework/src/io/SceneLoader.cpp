@@ -85,6 +85,7 @@ Scene readSource(std::string_view source, const SceneLoadOptions &options) {
         meshOptions.layerRules = options.layerRules;
         meshOptions.upAxis = options.upAxis;
         meshOptions.unit = options.unit;
+        meshOptions.maxGeometryBytes = options.memoryBudgetBytes ? options.memoryBudgetBytes : defaultMemoryBudgetBytes();
         const MeshFormat meshFormat = format == detail::ModelFormat::Obj   ? MeshFormat::Obj
                                       : format == detail::ModelFormat::Stl ? MeshFormat::Stl
                                                                            : MeshFormat::Ply;

@@ -1,11 +1,13 @@
 #include <mvcl/model/MeshFileLoader.h>
 
 #include "MeshFileData_p.h"
+#include "MeshFileMemoryEstimate_p.h"
 
 #include <mvcl/model/MeshClosure.h>
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <limits>
 
@@ -142,6 +144,25 @@ Scene read(const meshfile::ReadInput &input, MeshFormat format, const std::strin
     return assemble(std::move(data), input.name, stem, options);
 }
 
+/// Refuses a file whose geometry the memory budget cannot hold (MeshFileMemoryEstimate_p.h).
+/// `bytes` is the file's beginning, or all of it when `complete`. True when it could tell.
+bool checkMemoryBudget(std::span<const std::uint8_t> bytes, std::uint64_t fileSize, bool complete,
+                       MeshFormat format, const MeshFileOptions &options, const std::string &name) {
+    if (options.maxGeometryBytes == 0) return true;
+    try {
+        if (const auto estimate = meshfile::estimateFromHeader(bytes, fileSize, format)) {
+            detail::refuseOverBudget(*estimate, options.maxGeometryBytes);
+            return true;
+        }
+        if (!complete) return false;
+        detail::refuseOverBudget(meshfile::estimateFromText(bytes, format, options.maxGeometryBytes),
+                                 options.maxGeometryBytes);
+        return true;
+    } catch (const Error &e) {
+        throw Error(name, e.problem());
+    }
+}
+
 } // namespace
 
 Scene loadMeshFile(const std::filesystem::path &path, MeshFormat format, const MeshFileOptions &options) {
@@ -152,10 +173,21 @@ Scene loadMeshFile(const std::filesystem::path &path, MeshFormat format, const M
     if (size > options.maxFileBytes)
         throw Error(name, "the file has " + std::to_string(size) + " bytes, more than the limit of " +
                               std::to_string(options.maxFileBytes));
-    std::vector<std::uint8_t> bytes(size);
     std::ifstream file(path, std::ios::binary);
+    bool budgetChecked = options.maxGeometryBytes == 0;
+    if (!budgetChecked) {
+        // A binary STL's or a PLY's header says what the file holds: refused before the rest
+        // of it is read.
+        std::vector<std::uint8_t> head(std::min<std::uintmax_t>(size, meshfile::kHeaderProbeBytes));
+        if (!file.read(reinterpret_cast<char *>(head.data()), std::streamsize(head.size())))
+            throw Error(name, "cannot read the file");
+        budgetChecked = checkMemoryBudget(head, size, head.size() == size, format, options, name);
+        file.seekg(0);
+    }
+    std::vector<std::uint8_t> bytes(size);
     if (!file.read(reinterpret_cast<char *>(bytes.data()), std::streamsize(size)))
         throw Error(name, "cannot read the file");
+    if (!budgetChecked) checkMemoryBudget(bytes, size, true, format, options, name);
     meshfile::ReadInput input{bytes, name, path.parent_path().empty() ? "." : path.parent_path(),
                               {options.maxTriangles}};
     return read(input, format, path.stem().string(), options);
@@ -164,6 +196,7 @@ Scene loadMeshFile(const std::filesystem::path &path, MeshFormat format, const M
 Scene loadMeshFileFromMemory(std::span<const std::uint8_t> bytes, const std::string &name, MeshFormat format,
                              const MeshFileOptions &options) {
     if (bytes.size() > options.maxFileBytes) throw Error(name, "the file is larger than the limit");
+    checkMemoryBudget(bytes, bytes.size(), true, format, options, name);
     meshfile::ReadInput input{bytes, name, {}, {options.maxTriangles}};
     return read(input, format, std::filesystem::path(name).stem().string(), options);
 }
