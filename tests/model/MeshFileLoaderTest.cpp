@@ -250,6 +250,28 @@ TEST_F(MeshFiles, BadFilesGiveOneLineNamingTheFile) {
     }
 }
 
+/// The OBJ reader checks every number of v, vn and vt lines itself (tinyobjloader reads what it
+/// cannot parse as 0): a fast syntax check for plain decimals, std::from_chars for the rest.
+TEST_F(MeshFiles, ObjCoordinatesAreCheckedInEverySpelling) {
+    const std::string good = "v +1.5 .5 5.\nv 1e5 -0 1E-05\n  v\t0 1 0 # a comment\nvn 0 0 1\nvt 0.25 1e+2\n"
+                             "v 123456789012345678901234567890 0 1e-99\nf 1 2 3\nf 1 2 4\n";
+    const Scene scene = loadScene(write("spellings.obj", good));
+    EXPECT_EQ(scene.triangleCount(), 2u);
+    const struct {
+        const char *coordinate, *expected;
+    } bad[] = {
+        {"1e999", "'1e999' is not finite"},    {"-inf", "'-inf' is not finite"},  {"nan", "'nan' is not finite"},
+        {"1e-400", "'1e-400' is not finite"},  {"1.2.3", "'1.2.3' is not a number"}, {"1e", "'1e' is not a number"},
+        {"0x10", "'0x10' is not a number"},    {"--1", "'--1' is not a number"},  {".", "'.' is not a number"},
+    };
+    for (const auto &c : bad) {
+        SCOPED_TRACE(c.coordinate);
+        const std::string path = write("bad-number.obj", std::string("v 0 0 0\nv 1 0 0\nvn 0 ") + c.coordinate + " 1\nv 0 1 0\nf 1 2 3\n");
+        const std::string error = errorOf([&] { loadScene(path); });
+        EXPECT_NE(error.find("line 3: vn coordinate " + std::string(c.expected)), std::string::npos) << error;
+    }
+}
+
 TEST_F(MeshFiles, MisleadingExtensionIsReadByContentWithAWarning) {
     const Scene scene = loadScene(write("really-a-ply.stl", ply(cubeMesh(), PlyEncoding::BigEndian)));
     EXPECT_EQ(scene.triangleCount(), 12u);

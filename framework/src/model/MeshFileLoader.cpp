@@ -55,25 +55,22 @@ Scene assemble(MeshFileData data, const std::string &name, const std::string &st
         TriangleMesh mesh;
         mesh.name = part.name.empty() ? stem : part.name;
         mesh.nodeName = mesh.name;
-        std::vector<glm::dvec3> &points = world.emplace_back();
-        points.reserve(part.positions.size());
-        for (const glm::dvec3 &p : part.positions) {
-            points.push_back(frame.apply(p));
-            lo = glm::min(lo, points.back());
-            hi = glm::max(hi, points.back());
+        // In place, without copies: a million-triangle file's parts are tens of megabytes.
+        std::vector<glm::dvec3> &points = part.positions;
+        for (glm::dvec3 &p : points) {
+            p = frame.apply(p);
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
         }
-        mesh.indices.reserve(part.triangles.size());
-        for (const glm::uvec3 &t : part.triangles) {
+        const auto degenerate = [&points](const glm::uvec3 &t) {
             const glm::dvec3 cr = glm::cross(points[t.y] - points[t.x], points[t.z] - points[t.x]);
-            if (t.x == t.y || t.y == t.z || t.x == t.z || (cr.x == 0.0 && cr.y == 0.0 && cr.z == 0.0))
-                ++scene.report.degenerateTrianglesDropped;
-            else
-                mesh.indices.push_back(t);
-        }
-        if (mesh.indices.empty()) {
-            world.pop_back();
-            continue;
-        }
+            return t.x == t.y || t.y == t.z || t.x == t.z || (cr.x == 0.0 && cr.y == 0.0 && cr.z == 0.0);
+        };
+        const std::size_t dropped = std::erase_if(part.triangles, degenerate);
+        scene.report.degenerateTrianglesDropped += dropped;
+        if (part.triangles.empty()) continue;
+        mesh.indices = std::move(part.triangles);
+        world.push_back(std::move(part.positions));
         if (!part.normals.empty()) {
             mesh.normals.reserve(part.normals.size());
             for (const glm::dvec3 &n : part.normals) {

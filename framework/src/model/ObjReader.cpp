@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <istream>
 #include <map>
@@ -67,30 +68,60 @@ private:
     std::vector<std::string> &m_warnings;
 };
 
+/// Whether `word` is a decimal number that is certainly finite as a double: [+-]digits[.digits]
+/// with an exponent of at most two digits and at most 200 digits in all. Anything else (other
+/// spellings, huge exponents, "nan", "inf") goes to std::from_chars for the exact verdict; this is
+/// only the fast path of the check that runs over every v, vn and vt line.
+bool isPlainFiniteNumber(std::string_view word) {
+    std::size_t i = 0, digits = 0;
+    const std::size_t n = word.size();
+    if (i < n && (word[i] == '+' || word[i] == '-')) ++i;
+    while (i < n && word[i] >= '0' && word[i] <= '9') ++i, ++digits;
+    if (i < n && word[i] == '.') {
+        ++i;
+        while (i < n && word[i] >= '0' && word[i] <= '9') ++i, ++digits;
+    }
+    if (digits == 0 || digits > 200) return false;
+    if (i == n) return true;
+    if (word[i] != 'e' && word[i] != 'E') return false;
+    ++i;
+    if (i < n && (word[i] == '+' || word[i] == '-')) ++i;
+    const std::size_t exponentStart = i;
+    while (i < n && word[i] >= '0' && word[i] <= '9') ++i;
+    return i == n && i > exponentStart && i - exponentStart <= 2;
+}
+
 /// Every number on the v, vn and vt lines parses and is finite; fails naming the line otherwise.
+/// One pass over the bytes, a plain syntax check per number (std::from_chars only for what
+/// that does not settle): it runs before tinyobjloader over the whole file, so it must cost
+/// little beside tinyobjloader's own parse.
 void checkVertexNumbers(const ReadInput &input) {
-    const std::string_view text(reinterpret_cast<const char *>(input.bytes.data()), input.bytes.size());
+    const char *const begin = reinterpret_cast<const char *>(input.bytes.data());
+    const char *const end = begin + input.bytes.size();
+    const auto isBlank = [](char c) { return c == ' ' || c == '\t'; };
     std::size_t line = 0;
-    for (std::size_t pos = 0; pos < text.size();) {
+    for (const char *p = begin; p < end;) {
         ++line;
-        std::size_t end = text.find('\n', pos);
-        if (end == std::string_view::npos) end = text.size();
-        std::string_view l = text.substr(pos, end - pos);
-        pos = end + 1;
-        while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
-        if (l.size() < 2 || l[0] != 'v' || !(l[1] == ' ' || l[1] == '\t' || l[1] == 'n' || l[1] == 't')) continue;
-        std::size_t i = l.find_first_of(" \t");
-        if (i == std::string_view::npos) continue;
-        const std::string_view keyword = l.substr(0, i);
-        if (keyword != "v" && keyword != "vn" && keyword != "vt") continue;
-        while (i < l.size()) {
-            i = l.find_first_not_of(" \t\r", i);
-            if (i == std::string_view::npos || l[i] == '#') break;
-            std::size_t j = l.find_first_of(" \t\r", i);
-            if (j == std::string_view::npos) j = l.size();
-            std::string_view word = l.substr(i, j - i);
-            i = j;
-            std::string_view digits = word.starts_with('+') ? word.substr(1) : word;
+        const char *eol = static_cast<const char *>(std::memchr(p, '\n', std::size_t(end - p)));
+        if (!eol) eol = end;
+        const char *c = p;
+        p = eol + 1;
+        while (c < eol && isBlank(*c)) ++c;
+        if (eol - c < 2 || c[0] != 'v') continue;
+        std::string_view keyword;
+        if (isBlank(c[1])) keyword = "v";
+        else if ((c[1] == 'n' || c[1] == 't') && eol - c > 2 && isBlank(c[2])) keyword = c[1] == 'n' ? "vn" : "vt";
+        else continue;
+        c += keyword.size();
+        for (;;) {
+            while (c < eol && (isBlank(*c) || *c == '\r')) ++c;
+            if (c == eol || *c == '#') break;
+            const char *wordEnd = c;
+            while (wordEnd < eol && !isBlank(*wordEnd) && *wordEnd != '\r') ++wordEnd;
+            const std::string_view word(c, std::size_t(wordEnd - c));
+            c = wordEnd;
+            if (isPlainFiniteNumber(word)) continue;
+            const std::string_view digits = word.starts_with('+') ? word.substr(1) : word;
             double value = 0.0;
             const auto [stop, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
             if (ec == std::errc::result_out_of_range || (ec == std::errc() && stop == digits.data() + digits.size() && !std::isfinite(value)))
