@@ -297,6 +297,55 @@ TEST(MeshFilesByOtherTools, CgalSamplesLoad) {
                             [](const std::string &w) { return w.find("not read") != std::string::npos; }));
 }
 
+TEST(MeshFilesByOtherTools, AssimpObjSamplesLoadWithTheirGroupsAndMaterials) {
+    const fs::path dir = fs::path(MVCL_TEST_DATA_DIR) / "meshes/assimp";
+    // MilkShape 3D's export: a mesh per group, its material from the library.
+    const Scene spider = loadScene((dir / "spider.obj").string());
+    ASSERT_EQ(spider.meshes.size(), 19u);
+    EXPECT_EQ(spider.triangleCount() + spider.report.degenerateTrianglesDropped, 1368u);
+    EXPECT_EQ(spider.report.degenerateTrianglesDropped, 56u);
+    const std::vector<std::string> groups = {"HLeib01", "OK", "Bein1Li", "Bein1Re", "Bein2Li", "Bein2Re", "Bein3Re",
+                                             "Bein3Li", "Bein4Re", "Bein4Li", "Zahn", "klZahn", "Kopf", "Brust",
+                                             "Kopf2", "Zahn2", "klZahn2", "Auge", "Duplicate05"};
+    const std::vector<std::string> materialOfGroup = {"HLeibTex", "Skin", "BeinTex", "BeinTex", "BeinTex", "BeinTex",
+                                                      "BeinTex", "BeinTex", "BeinTex", "BeinTex", "BeinTex", "BeinTex",
+                                                      "Skin", "Skin", "Skin", "BeinTex", "BeinTex", "Augentex", "Augentex"};
+    for (std::size_t i = 0; i < groups.size(); ++i) {
+        SCOPED_TRACE(groups[i]);
+        EXPECT_EQ(spider.meshes[i].name, groups[i]);
+        EXPECT_EQ(spider.materials[spider.meshes[i].material].name, materialOfGroup[i]);
+    }
+    EXPECT_EQ(spider.meshes[0].indices.size(), 80u);
+    EXPECT_EQ(spider.meshes[0].closure, MeshClosure::Outward) << "the abdomen is a closed solid";
+    EXPECT_EQ(spider.meshes[2].normals.size(), spider.meshes[2].positions.size()) << "its vn are read";
+    const auto skin = std::find_if(spider.materials.begin(), spider.materials.end(),
+                                   [](const Material &m) { return m.name == "Skin"; });
+    ASSERT_NE(skin, spider.materials.end());
+    EXPECT_NEAR(skin->diffuse.r, 0.827451f, 1e-6f);
+    EXPECT_NEAR(skin->diffuse.b, 0.772549f, 1e-6f);
+
+    // One group in three materials (one missing from the library): three meshes that bound one
+    // solid together, so clip volumes cap the cube.
+    const Scene cube = loadScene((dir / "cube_usemtl.obj").string());
+    ASSERT_EQ(cube.meshes.size(), 3u);
+    EXPECT_EQ(cube.triangleCount(), 12u);
+    std::vector<std::string> materials;
+    for (const TriangleMesh &m : cube.meshes) {
+        EXPECT_EQ(m.name, "cube");
+        EXPECT_EQ(m.closure, MeshClosure::Outward) << cube.materials[m.material].name;
+        materials.push_back(cube.materials[m.material].name);
+    }
+    EXPECT_EQ(materials, (std::vector<std::string>{"default", "mtl", "mtl2"}));
+    EXPECT_TRUE(std::any_of(cube.report.warnings.begin(), cube.report.warnings.end(),
+                            [](const std::string &w) { return w.find("'mtl3' ] not found") != std::string::npos; }));
+    // The same file twice as layers: each file's group is a solid of its own.
+    const std::vector<std::string> twice = {(dir / "cube_usemtl.obj").string(), (dir / "cube_usemtl.obj").string()};
+    const Scene layered = loadScene(std::span<const std::string>(twice));
+    ASSERT_EQ(layered.meshes.size(), 6u);
+    EXPECT_EQ(layered.meshes[0].sourceNode, layered.meshes[2].sourceNode);
+    EXPECT_NE(layered.meshes[0].sourceNode, layered.meshes[3].sourceNode);
+}
+
 TEST(LayerRuleNames, FromTextAndJson) {
     const LayerRules text = LayerRules::fromString("*skin*=0:skin; *bone*=1");
     ASSERT_EQ(text.rules().size(), 2u);

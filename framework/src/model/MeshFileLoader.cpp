@@ -55,6 +55,10 @@ Scene assemble(MeshFileData data, const std::string &name, const std::string &st
         TriangleMesh mesh;
         mesh.name = part.name.empty() ? stem : part.name;
         mesh.nodeName = mesh.name;
+        if (part.group >= 0) { // one OBJ group in several materials is still one solid (closure, inference)
+            mesh.sourceNode = part.group;
+            mesh.sourceMesh = 0;
+        }
         // In place, without copies: a million-triangle file's parts are tens of megabytes.
         std::vector<glm::dvec3> &points = part.positions;
         for (glm::dvec3 &p : points) {

@@ -274,6 +274,7 @@ MeshFileData readObj(const ReadInput &input) {
                 MeshPart &part = data.parts.emplace_back();
                 part.name = shape.name;
                 part.material = material;
+                part.group = int(&shape - shapes.data());
                 numbers.emplace_back();
             }
             MeshPart &part = data.parts[it->second];
