@@ -299,7 +299,7 @@ int run(const RenderCommandLine &cl) {
         isAnimation(cl) ? std::optional<Animation>(commandLineAnimation(cl, lenses)) : std::nullopt;
 
     const auto loadStart = std::chrono::steady_clock::now();
-    const Scene scene = loadScene(setup.sources(), setup.loadOptions);
+    const Scene scene = setup.renameLayers(loadScene(setup.sources(), setup.loadOptions));
     const double loadMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count();
     if (cl.info) {

@@ -161,9 +161,20 @@ void Viewer::drawLayersPanel() {
         ImGui::ColorButton("##colour", ImVec4(c.x, c.y, c.z, 1.f), ImGuiColorEditFlags_NoTooltip);
         ImGui::SameLine();
         bool visible = m_controller->layerVisibility(layer.id) == LayerVisibility::Visible;
-        const std::string label = std::to_string(layer.id) + "  " + layer.name;
+        const std::string label = std::to_string(layer.id) + "##visible";
         if (ImGui::Checkbox(label.c_str(), &visible))
             edit([&] { m_controller->setLayerVisibility(layer.id, visible ? LayerVisibility::Visible : LayerVisibility::Hidden); });
+        // The name, editable: renamed when the field is left or Enter pressed (one undo step).
+        ImGui::SameLine();
+        char name[128];
+        std::snprintf(name, sizeof name, "%s", layer.name.c_str());
+        ImGui::SetNextItemWidth(-1.f);
+        ImGui::InputText("##name", name, sizeof name);
+        if (ImGui::IsItemDeactivatedAfterEdit()) {
+            const int id = layer.id; // the rename may reallocate the layer table
+            const std::string renamed = name;
+            edit([&] { m_controller->setLayerName(id, renamed); });
+        }
         ImGui::PopID();
     }
 }

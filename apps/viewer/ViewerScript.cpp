@@ -28,7 +28,7 @@ const std::map<std::string, Arity> &commandTable() {
         {"expect-lenses", {1, 1}}, {"bench-begin", {1, 1}},     {"bench-end", {0, 0}},
         {"add-keyframe", {2, 2}},  {"play", {1, 1}},            {"record", {2, 2}},
         {"stop-recording", {0, 0}}, {"write-turntable", {2, 3}}, {"quit", {0, 1}},
-        {"recovery", {1, 1}},
+        {"recovery", {1, 1}},      {"set-layer-name", {2, 2}},
     };
     return table;
 }
@@ -108,6 +108,7 @@ add-lens TYPE X Y             a lens of TYPE centred at normalised (X, Y)
 select INDEX                  select lens INDEX (-1: none)
 set-property INDEX NAME VALUE a property of lens INDEX in its text form
 set-layer LAYER visible|hidden
+set-layer-name LAYER NAME     rename a layer (one word; the layer panel's field takes any)
 recovery restore|discard      answer the start's offer of the last unsaved session
 wait-converged                until the render session is idle and its image shown
 wait-frames N                 draw N frames

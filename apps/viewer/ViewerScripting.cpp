@@ -123,6 +123,8 @@ bool Viewer::runCommand(const ScriptCommand &c) {
     } else if (name == "set-layer") {
         if (c.word(1) != "visible" && c.word(1) != "hidden") fail("expects visible or hidden");
         m_controller->setLayerVisibility(c.integer(0), c.word(1) == "visible" ? LayerVisibility::Visible : LayerVisibility::Hidden);
+    } else if (name == "set-layer-name") {
+        m_controller->setLayerName(c.integer(0), c.word(1));
     } else if (name == "recovery") {
         if (c.word(0) != "restore" && c.word(0) != "discard") fail("expects restore or discard");
         if (!m_recoveryOffered) fail("no recovery copy was offered at start");

@@ -44,6 +44,7 @@ SessionState Controller::Private::captureState() const {
     SessionState state;
     state.camera = camera;
     state.visibleLayers = visibleLayers;
+    state.layerNames = layerNames;
     for (const std::shared_ptr<Lens> &lens : stack.lenses()) state.lenses.push_back(LensState::of(*lens));
     return state;
 }
@@ -76,6 +77,7 @@ void Controller::Private::restore(const Step &step) {
         visibleLayers = target.visibleLayers;
         sendBasePolicy();
     }
+    if (layerNames != target.layerNames) setLayerNames(target.layerNames);
     selected = step.selected < stack.size() ? step.selected : -1;
 }
 
@@ -160,6 +162,9 @@ void Controller::Private::replaceScene(std::unique_ptr<Scene> newScene, std::uni
     session = std::move(newSession);
     tracer = std::move(newTracer);
     scene = std::move(newScene);
+    sceneLayerNames.clear();
+    for (const Layer &layer : scene->layers.layers()) sceneLayerNames[layer.id] = layer.name;
+    layerNames.clear();
     sendCamera();
     sendBasePolicy();
     sendLenses();
@@ -178,9 +183,11 @@ Controller::Controller(const LensRegistry &registry, const ViewRequest &request,
     d->camera = setup.camera(*scene, request, float(d->viewSize.x) / float(d->viewSize.y));
     d->visibleLayers = setup.session.visibleLayers;
     d->stack = setup.session.lenses;
+    std::map<int, std::string> layerNames = std::move(setup.session.layerNames);
     setup.session = {}; // the controller's stack is the one that is edited
     d->setup = std::move(setup);
     d->replaceScene(std::move(scene), std::move(tracer));
+    d->setLayerNames(std::move(layerNames));
     if (!request.sessionFile.empty()) d->sessionPath = request.sessionFile;
     d->markSaved(); // what was opened is not a change to recover; an old copy stays for hasRecovery()
 }
@@ -228,7 +235,9 @@ void Controller::openScenes(const std::vector<std::string> &sources, const Scene
 // --- session files ----------------------------------------------------------------------------------
 
 LensStackDescription Controller::description() const {
-    return d->setup.describe(*d->scene, d->camera, d->stack, d->visibleLayers);
+    LensStackDescription description = d->setup.describe(*d->scene, d->camera, d->stack, d->visibleLayers);
+    description.layerNames = d->layerNames;
+    return description;
 }
 
 void Controller::saveSession(const std::filesystem::path &file) {
@@ -271,6 +280,7 @@ void Controller::loadSession(const std::filesystem::path &file) {
     d->visibleLayers = setup.session.visibleLayers;
     d->stack = setup.session.lenses;
     d->selected = -1;
+    std::map<int, std::string> layerNames = std::move(setup.session.layerNames);
     setup.session = {};
     d->setup = std::move(setup);
     if (sameScene) {
@@ -280,6 +290,7 @@ void Controller::loadSession(const std::filesystem::path &file) {
     } else {
         d->replaceScene(std::move(scene), std::move(tracer));
     }
+    d->setLayerNames(std::move(layerNames));
     d->sessionPath = file;
     d->clearHistory();
     d->markSaved();

@@ -59,6 +59,8 @@ struct Controller::Private {
     // The editable state.
     Camera camera;
     uint32_t visibleLayers = kAllLayers;
+    std::map<int, std::string> layerNames;      ///< renamed layers (setLayerName)
+    std::map<int, std::string> sceneLayerNames; ///< the scene's own names, as loaded
     LensStack stack;
     int selected = -1;
 
@@ -141,6 +143,10 @@ struct Controller::Private {
     }
     /// Takes over a newly loaded scene; stops and replaces the RenderSession.
     void replaceScene(std::unique_ptr<Scene> newScene, std::unique_ptr<Tracer> newTracer);
+
+    // --- layer names (ControllerLayerNames.cpp) ---
+    /// Takes `names` as the renamed layers and shows them in the scene's layer table.
+    void setLayerNames(std::map<int, std::string> names);
 
     // --- lenses (ControllerLenses.cpp) ---
     /// Throws mvcl::Error for an index outside the stack.

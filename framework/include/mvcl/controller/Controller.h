@@ -192,6 +192,13 @@ public:
     LayerVisibility layerVisibility(int layer) const;
     /// Bit i set: layer i is visible to primary rays outside every lens.
     uint32_t visibleLayers() const;
+    /// Renames a layer of the scene: one undo step, shown in scene().layers, saved in the
+    /// session ("layerNames") and over every other source of names (rules, files, meshes). An
+    /// empty name gives the layer back its name from the scene. Throws mvcl::Error for a layer
+    /// the scene does not have or a name with a line break, and changes nothing.
+    void setLayerName(int layer, const std::string &name);
+    /// The layer's name as shown (empty for a layer the scene does not have).
+    std::string layerName(int layer) const;
     void setVisibleLayers(uint32_t mask);
     /// The policy of pixels outside every lens, as given to the RenderSession.
     RayPolicy basePolicy() const;

@@ -1,7 +1,7 @@
 #pragma once
 /// \file SessionState.h
 /// The editable state of one view as plain values — what one undo step restores and what a
-/// test compares: the camera, the visible layers and the lens stack. The scene itself (source,
+/// test compares: the camera, the visible layers, the renamed layers and the lens stack. The scene itself (source,
 /// layer rules) is not in it: changing the scene starts a new history.
 
 #include <mvcl/controller/LensState.h>
@@ -9,6 +9,8 @@
 #include <mvcl/view/Camera.h>
 
 #include <cstdint>
+#include <map>
+#include <string>
 #include <vector>
 
 namespace mvcl {
@@ -18,6 +20,8 @@ struct SessionState {
     /// Layers primary rays may hit outside every lens (RayPolicy primary layerMask).
     uint32_t visibleLayers = kAllLayers;
     std::vector<LensState> lenses; ///< bottom → top
+    /// Layers the user renamed (Controller::setLayerName); the others keep the scene's names.
+    std::map<int, std::string> layerNames;
 
     bool operator==(const SessionState &other) const = default;
 };

@@ -59,6 +59,10 @@ struct MVCL_EXPORT ViewSetup {
     /// The same with the session's own lenses and visible layers.
     LensStackDescription describe(const Scene &scene, const Camera &camera) const;
 
+    /// `scene` with the session's renamed layers ("layerNames") over its own names; names of
+    /// layers the scene does not have are left out.
+    Scene renameLayers(Scene scene) const;
+
     /// The field of view a framed view uses when nobody gives one.
     static constexpr float kDefaultVerticalFovDegrees = 40.f;
 };
