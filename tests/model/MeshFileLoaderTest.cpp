@@ -272,6 +272,38 @@ TEST_F(MeshFiles, ObjCoordinatesAreCheckedInEverySpelling) {
     }
 }
 
+/// What tinyobjloader's two interfaces must agree on: the callback one (files without vertex
+/// colours) and LoadObj (with them).
+TEST_F(MeshFiles, ObjGroupsObjectsRelativeIndicesAndVertexColoursReadAlike) {
+    const std::string body = "f -3 -2 -1\ng left side\nf 1 2 3\nusemtl nowhere\nf 1 3 4\no thing\nf 2 3 4\nl 1 2\n";
+    const std::string plain = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n" + body;
+    const std::string coloured = "v 0 0 0 1 0 0\nv 1 0 0 1 0 0\nv 0 1 0 1 0 0\nv 0 0 1 1 0 0\n" + body;
+    for (const bool hasColours : {false, true}) {
+        const std::string &text = hasColours ? coloured : plain;
+        SCOPED_TRACE(hasColours ? "vertex colours (LoadObj)" : "no colours (callbacks)");
+        const Scene scene = loadScene(write(hasColours ? "coloured.obj" : "plain.obj", text));
+        // A material missing from the library is no material: the group stays one mesh.
+        ASSERT_EQ(scene.meshes.size(), 3u);
+        EXPECT_EQ(scene.meshes[0].name, hasColours ? "coloured" : "plain") << "faces before any group: the file's stem";
+        EXPECT_EQ(scene.meshes[0].indices[0], glm::uvec3(0, 1, 2)) << "f -3 -2 -1 after 4 vertices";
+        EXPECT_EQ(scene.meshes[1].name, "left side") << "a g line's names, joined";
+        EXPECT_EQ(scene.meshes[1].indices.size(), 2u);
+        EXPECT_EQ(scene.meshes[2].name, "thing");
+        EXPECT_NE(scene.meshes[1].sourceNode, scene.meshes[2].sourceNode);
+        EXPECT_EQ(scene.triangleCount(), 4u);
+        const auto warned = [&](const std::string &what) {
+            return std::any_of(scene.report.warnings.begin(), scene.report.warnings.end(),
+                               [&](const std::string &w) { return w.find(what) != std::string::npos; });
+        };
+        EXPECT_TRUE(warned("'nowhere' ] not found"));
+        EXPECT_TRUE(warned("lines and points are skipped"));
+        EXPECT_EQ(warned("vertex colours are averaged"), hasColours);
+    }
+    const std::string zero = errorOf([&] { loadScene(write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n")); });
+    EXPECT_NE(zero.find("zero.obj: "), std::string::npos) << zero;
+    EXPECT_NE(zero.find("index 0"), std::string::npos) << zero;
+}
+
 TEST_F(MeshFiles, MisleadingExtensionIsReadByContentWithAWarning) {
     const Scene scene = loadScene(write("really-a-ply.stl", ply(cubeMesh(), PlyEncoding::BigEndian)));
     EXPECT_EQ(scene.triangleCount(), 12u);

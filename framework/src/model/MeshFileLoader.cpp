@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <fstream>
 #include <limits>
+#include <memory>
 
 namespace mvcl {
 
@@ -185,8 +186,10 @@ Scene loadMeshFile(const std::filesystem::path &path, MeshFormat format, const M
         budgetChecked = checkMemoryBudget(head, size, head.size() == size, format, options, name);
         file.seekg(0);
     }
-    std::vector<std::uint8_t> bytes(size);
-    if (!file.read(reinterpret_cast<char *>(bytes.data()), std::streamsize(size)))
+    // Not zero-filled first: the read writes every byte (tens of megabytes for a large mesh).
+    const std::unique_ptr<std::uint8_t[]> storage(new std::uint8_t[size]);
+    const std::span<const std::uint8_t> bytes(storage.get(), size);
+    if (!file.read(reinterpret_cast<char *>(storage.get()), std::streamsize(size)))
         throw Error(name, "cannot read the file");
     if (!budgetChecked) checkMemoryBudget(bytes, size, true, format, options, name);
     meshfile::ReadInput input{bytes, name, path.parent_path().empty() ? "." : path.parent_path(),
