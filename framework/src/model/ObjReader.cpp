@@ -98,7 +98,7 @@ bool isPlainFiniteNumber(std::string_view word) {
 
 /// What the pass over the text found besides bad numbers.
 struct ObjTextSummary {
-    std::size_t vertices = 0, normals = 0, faces = 0;
+    std::size_t vertices = 0, normals = 0; ///< `v` and `vn` lines, to reserve for them
     std::size_t linesAndPoints = 0; ///< `l` and `p` lines, which are not ray traced
     bool vertexColours = false;     ///< a `v` line with more than three numbers (colours, or w)
 };
@@ -121,7 +121,6 @@ ObjTextSummary scanObjText(const ReadInput &input) {
         p = eol + 1;
         while (c < eol && isBlank(*c)) ++c;
         if (eol - c < 2) continue;
-        if (c[0] == 'f' && isBlank(c[1])) ++summary.faces;
         if ((c[0] == 'l' || c[0] == 'p') && isBlank(c[1])) ++summary.linesAndPoints;
         if (c[0] != 'v') continue;
         std::string_view keyword;
