@@ -311,13 +311,15 @@ int run(const RenderCommandLine &cl) {
         isAnimation(cl) ? std::optional<Animation>(commandLineAnimation(cl, lenses)) : std::nullopt;
 
     if (cl.info) {
-        const Scene scene = loadScene(setup.sources(), setup.loadOptions);
+        Scene scene = loadScene(setup.sources(), setup.loadOptions);
+        setup.renameLayers(scene);
         printInfo(scene);
         printLayerContacts(scene);
         return kExitOk;
     }
     // One BVH for layer inference and rendering.
     const LoadedScene loaded = LoadedScene::load(setup.sources(), setup.loadOptions);
+    setup.renameLayers(*loaded.scene);
     const Scene &scene = *loaded.scene;
     const Tracer &tracer = *loaded.tracer;
     const TracerBuildStats &build = tracer.buildStats();

@@ -94,26 +94,13 @@ Viewer::Viewer(GLFWwindow *window, const ViewerOptions &options) : m_window(wind
 }
 
 Viewer::~Viewer() {
+    // A clean exit: unsaved changes land in the recovery copy, else it goes; an offer not
+    // answered keeps it for the next start.
+    if (m_controller && !m_recoveryOffered) m_controller->finishRecovery();
     stopRecording();
     stopHistogramWorker();
     if (m_document) m_document->stopRendering();
     glfwSetDropCallback(m_window, nullptr);
-}
-
-void Viewer::offerRecovery() {
-    namespace fs = std::filesystem;
-    const fs::path recovery = m_controller->recoveryPath();
-    std::error_code ec;
-    if (recovery.empty() || !fs::is_regular_file(recovery, ec)) return;
-    const fs::path &session = m_controller->sessionPath();
-    const fs::file_time_type recovered = fs::last_write_time(recovery, ec);
-    if (ec) return;
-    if (!session.empty() && fs::is_regular_file(session, ec)) {
-        const fs::file_time_type saved = fs::last_write_time(session, ec);
-        if (!ec && recovered <= saved) return; // saved since: nothing to recover
-    }
-    report("the last session was not saved; its recovery copy is " + recovery.string() + " (open it with --session " +
-           recovery.string() + ")");
 }
 
 void Viewer::report(const std::string &message) {
@@ -145,6 +132,7 @@ void Viewer::update() {
     }
     runScript();
     refocus();
+    if (!m_recoveryOffered) m_controller->updateRecovery(); // the offered copy stays as it is until answered
     updatePlayback();
     takeImage();
     m_document->updateRenderPriority(); // the focused view refines first

@@ -63,9 +63,6 @@ private:
     /// An event at window framebuffer pixels, to the document (routed to a view).
     void handleInWindow(const InputEvent &event);
     void report(const std::string &message);
-    /// At start: a recovery copy newer than its session (or of a session never saved) means the
-    /// last run ended before saving; say where it is and how to open it.
-    void offerRecovery();
     void writeScreenshot(const std::string &file);
     void saveSession(const std::string &file);
     void openFile(const std::string &file);
@@ -120,6 +117,12 @@ private:
     /// Hands the view's image (lens outlines, no panels) to the recorder.
     void recordFrame();
     void stopRecording();
+    // ViewerRecovery.cpp
+    /// At start: a recovery copy newer than its session (or of a session never saved) means the
+    /// last run ended before saving; a modal offers to restore or discard it.
+    void offerRecovery();
+    void drawRecoveryOffer();
+    void answerRecoveryOffer(bool restore);
     // ViewerScripting.cpp
     void runScript();
     bool runCommand(const ScriptCommand &command);
@@ -153,6 +156,7 @@ private:
     bool m_showHelp = false;
     bool m_editStepOpen = false;      ///< a panel widget is being dragged: one undo step
     bool m_openPopupRequested = false;
+    bool m_recoveryOffered = false;   ///< the Restore / Discard modal is waiting for an answer
     std::string m_openPath;
     std::deque<std::string> m_messages;
     glm::vec2 m_pointer{-1.f};        ///< framebuffer pixels of the focused view; negative when outside it

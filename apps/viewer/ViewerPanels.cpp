@@ -42,6 +42,7 @@ void Viewer::drawUi() {
     drawPanels();
     drawHelpOverlay();
     drawOpenPopup();
+    drawRecoveryOffer();
     drawMessages();
     if (m_editStepOpen && !ImGui::IsAnyItemActive()) {
         m_controller->endEditStep();
@@ -222,9 +223,20 @@ void Viewer::drawLayersPanel() {
         ImGui::ColorButton("##colour", ImVec4(c.x, c.y, c.z, 1.f), ImGuiColorEditFlags_NoTooltip);
         ImGui::SameLine();
         bool visible = m_controller->layerVisibility(layer.id) == LayerVisibility::Visible;
-        const std::string label = std::to_string(layer.id) + "  " + layer.name;
+        const std::string label = std::to_string(layer.id) + "##visible";
         if (ImGui::Checkbox(label.c_str(), &visible))
             edit([&] { m_controller->setLayerVisibility(layer.id, visible ? LayerVisibility::Visible : LayerVisibility::Hidden); });
+        // The name, editable: renamed when the field is left or Enter pressed (one undo step).
+        ImGui::SameLine();
+        char name[128];
+        std::snprintf(name, sizeof name, "%s", m_controller->layerName(layer.id).c_str());
+        ImGui::SetNextItemWidth(-1.f);
+        ImGui::InputText("##name", name, sizeof name);
+        if (ImGui::IsItemDeactivatedAfterEdit()) {
+            const int id = layer.id;
+            const std::string renamed = name;
+            edit([&] { m_controller->setLayerName(id, renamed); });
+        }
         ImGui::PopID();
     }
 }
@@ -255,7 +267,7 @@ void Viewer::drawPickPanel() {
         ImGui::TextDisabled("nothing: the background");
         return;
     }
-    ImGui::Text("layer %d  %s", p.layer, p.layerName.c_str());
+    ImGui::Text("layer %d  %s", p.layer, m_controller->layerName(p.layer).c_str());
     ImGui::Text("object %s", p.objectName.c_str());
     if (!p.nodeName.empty() || !p.meshName.empty())
         ImGui::Text("node %s, mesh %s", p.nodeName.c_str(), p.meshName.c_str());

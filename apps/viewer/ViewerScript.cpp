@@ -34,6 +34,7 @@ const std::map<std::string, Arity> &commandTable() {
         {"gizmo-drag", {4, 7}},    {"fit-lens", {2, 3}},        {"follow-pointer", {2, 2}},
         {"layout", {1, 1}},        {"focus-view", {1, 1}},      {"link", {3, 3}},
         {"unlink", {3, 3}},        {"compare", {1, 1}},         {"compare-divider", {1, 1}},
+        {"recovery", {1, 1}},      {"set-layer-name", {2, 2}},
     };
     return table;
 }
@@ -151,6 +152,8 @@ add-lens TYPE X Y             a lens of TYPE centred at normalised (X, Y) in the
 select INDEX                  select lens INDEX (-1: none)
 set-property INDEX NAME VALUE a property of lens INDEX in its text form
 set-layer LAYER visible|hidden
+set-layer-name LAYER NAME     rename a layer (one word; the layer panel's field takes any)
+recovery restore|discard      answer the start's offer of the last unsaved session
 wait-converged                until the render session is idle and its image shown
 wait-frames N                 draw N frames
 screenshot FILE               every shown view as laid out, with lens outlines, no UI

@@ -28,16 +28,20 @@ PointerButton buttonNamed(const ScriptCommand &c, const std::string &name) {
 void Viewer::runScript() {
     if (!m_script || m_quit) return;
     try {
-        // Commands run until one needs a frame drawn (pointer events, waits).
-        while (!m_script->isFinished() && !m_quit) {
+        // Commands run until one needs a frame drawn (pointer events, waits). The script ends
+        // after its last command's frames: a closing wait-frames waits too.
+        while (!m_quit) {
             if (m_waitFrames > 0) {
                 --m_waitFrames;
+                return;
+            }
+            if (m_script->isFinished()) {
+                m_quit = true;
                 return;
             }
             if (!runCommand(m_script->current())) return; // not done yet: again next frame
             m_script->advance();
         }
-        if (m_script->isFinished()) m_quit = true;
     } catch (const Error &e) {
         std::fprintf(stderr, "mvcl-viewer: %s: %s\n", m_script->file().string().c_str(), e.what());
         m_exitCode = 1;
@@ -115,6 +119,12 @@ bool Viewer::runCommand(const ScriptCommand &c) {
     } else if (name == "set-layer") {
         if (c.word(1) != "visible" && c.word(1) != "hidden") fail("expects visible or hidden");
         m_controller->setLayerVisibility(c.integer(0), c.word(1) == "visible" ? LayerVisibility::Visible : LayerVisibility::Hidden);
+    } else if (name == "set-layer-name") {
+        m_controller->setLayerName(c.integer(0), c.word(1));
+    } else if (name == "recovery") {
+        if (c.word(0) != "restore" && c.word(0) != "discard") fail("expects restore or discard");
+        if (!m_recoveryOffered) fail("no recovery copy was offered at start");
+        answerRecoveryOffer(c.word(0) == "restore");
     } else if (name == "wait-converged") {
         // Idle, and the last published pixels are on screen.
         // Every view: linked views render what the focused one's edits sent them.

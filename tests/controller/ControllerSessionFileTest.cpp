@@ -1,5 +1,5 @@
 // Controller session files: save → load round trip, broken files leave the state untouched
-// with an error naming the file, the recovery copy after every step, dropped files.
+// with an error naming the file, the recovery copy (written, removed, offered, restored), dropped files.
 
 #include <mvcl/testing/ErrorOf.h>
 #include "controller/ControllerFixture.h"
@@ -111,17 +111,20 @@ TEST_F(ControllerSessionFileTest, ABrokenSessionThrowsNamingTheFileAndChangesNot
     EXPECT_EQ(controller->state(), before);
 }
 
-TEST_F(ControllerSessionFileTest, TheRecoveryCopyIsRewrittenAfterEveryEditStep) {
+TEST_F(ControllerSessionFileTest, WithoutAnIntervalTheRecoveryCopyIsRewrittenAfterEveryEditStep) {
     const fs::path folder = scratchFolder();
     auto controller = makeController();
+    controller->setRecoveryInterval(std::chrono::milliseconds(0));
     EXPECT_TRUE(controller->recoveryPath().empty()) << "no session, no recovery path given";
     controller->saveSession(folder / "work.json");
     EXPECT_EQ(controller->recoveryPath(), folder / "work.recovery.json");
     EXPECT_FALSE(fs::exists(controller->recoveryPath())) << "saving leaves nothing to recover";
+    EXPECT_FALSE(controller->hasUnsavedChanges());
 
     controller->addLens("achromatic", {0.3f, 0.3f});
     ASSERT_TRUE(fs::exists(folder / "work.recovery.json"));
     EXPECT_EQ(readLensStackFile(folder / "work.recovery.json", *registry), controller->description());
+    EXPECT_TRUE(controller->hasUnsavedChanges());
 
     drag(*controller, pixelOf({0.3f, 0.3f}), pixelOf({0.3f, 0.3f}) + glm::vec2(20.f, 20.f));
     EXPECT_EQ(readLensStackFile(folder / "work.recovery.json", *registry), controller->description());
@@ -137,6 +140,88 @@ TEST_F(ControllerSessionFileTest, TheRecoveryCopyIsRewrittenAfterEveryEditStep) 
     controller->setRecoveryPath(chosen);
     controller->setLayerVisibility(0, LayerVisibility::Hidden);
     EXPECT_EQ(readLensStackFile(chosen, *registry), controller->description());
+}
+
+TEST_F(ControllerSessionFileTest, DragMovesReachTheRecoveryCopyBeforeTheRelease) {
+    const fs::path folder = scratchFolder();
+    auto controller = makeController();
+    controller->setRecoveryInterval(std::chrono::milliseconds(0));
+    controller->addLens("achromatic", {0.3f, 0.5f});
+    controller->saveSession(folder / "work.json");
+    const glm::vec2 from = pixelOf({0.3f, 0.5f});
+    controller->handle(InputEvent::pointerPress(from, PointerButton::Left));
+    controller->handle(InputEvent::pointerMove(from + glm::vec2(16.f, 0.f)));
+    EXPECT_FALSE(fs::exists(folder / "work.recovery.json")) << "written once a frame, not inside an event";
+    controller->updateRecovery(); // the frame after the move
+    ASSERT_TRUE(fs::exists(folder / "work.recovery.json"));
+    const LensStackDescription midDrag = readLensStackFile(folder / "work.recovery.json", *registry);
+    EXPECT_NEAR(midDrag.lenses.lens(0)->region().center().x, 0.4f, 1e-4f);
+    controller->handle(InputEvent::pointerRelease(from + glm::vec2(16.f, 0.f), PointerButton::Left));
+}
+
+TEST_F(ControllerSessionFileTest, SavingRemovesTheCopyAndACleanExitKeepsOnlyUnsavedChanges) {
+    const fs::path folder = scratchFolder();
+    const fs::path copy = folder / "work.recovery.json";
+    auto controller = makeController();
+    controller->setRecoveryInterval(std::chrono::hours(1)); // no write falls due by itself
+    controller->saveSession(folder / "work.json");
+    controller->addLens("achromatic", {0.3f, 0.5f}); // the first change is written at once
+    ASSERT_TRUE(fs::exists(copy));
+    controller->setLensLabel(0, "second"); // within the interval: pending
+    EXPECT_NE(readLensStackFile(copy, *registry).lenses.lens(0)->label(), "second");
+    controller->finishRecovery(); // a clean exit with unsaved changes: the last one lands
+    EXPECT_EQ(readLensStackFile(copy, *registry).lenses.lens(0)->label(), "second");
+
+    controller->saveSession(folder / "work.json");
+    EXPECT_FALSE(fs::exists(copy)) << "saved: nothing to recover";
+    EXPECT_FALSE(controller->hasRecovery());
+    controller->finishRecovery();
+    EXPECT_FALSE(fs::exists(copy)) << "a clean exit without unsaved changes leaves no copy";
+
+    // Saved under another name: the copy of the old name goes too.
+    controller->setLensLabel(0, "third");
+    controller->finishRecovery();
+    ASSERT_TRUE(fs::exists(copy));
+    controller->saveSession(folder / "renamed.json");
+    EXPECT_FALSE(fs::exists(copy));
+}
+
+TEST_F(ControllerSessionFileTest, ARecoveryCopyNewerThanItsSessionIsOfferedAndRestoresTheLenses) {
+    const fs::path folder = scratchFolder();
+    const fs::path session = folder / "work.json", copy = folder / "work.recovery.json";
+    {
+        auto crashed = makeController();
+        crashed->saveSession(session);
+        crashed->addLens("achromatic", {0.3f, 0.5f});
+        crashed->addLens("shadow", {0.6f, 0.5f});
+        crashed->finishRecovery(); // stands in for the last write before a crash
+    }
+    fs::last_write_time(copy, fs::last_write_time(session) + std::chrono::seconds(5));
+    ViewRequest request;
+    request.sessionFile = session;
+    auto controller = makeController(request);
+    EXPECT_EQ(controller->lensCount(), 0);
+    EXPECT_TRUE(controller->hasRecovery());
+    EXPECT_FALSE(controller->hasUnsavedChanges()) << "opening is not a change";
+
+    controller->restoreRecovery();
+    EXPECT_EQ(controller->lensCount(), 2);
+    EXPECT_EQ(controller->sessionPath(), session) << "still the user's session";
+    EXPECT_EQ(controller->recoveryPath(), copy);
+    EXPECT_TRUE(controller->hasUnsavedChanges()) << "restored, not saved";
+    controller->finishRecovery();
+    EXPECT_TRUE(fs::exists(copy)) << "a clean exit keeps the restored state until it is saved";
+
+    auto declined = makeController(request);
+    ASSERT_TRUE(declined->hasRecovery());
+    declined->discardRecovery();
+    EXPECT_FALSE(fs::exists(copy));
+    EXPECT_FALSE(declined->hasRecovery());
+
+    // A copy older than its session: saved since, nothing to offer.
+    std::ofstream(copy) << R"({"scene": "builtin:cube-in-cube", "lenses": []})";
+    fs::last_write_time(copy, fs::last_write_time(session) - std::chrono::seconds(5));
+    EXPECT_FALSE(makeController(request)->hasRecovery());
 }
 
 TEST_F(ControllerSessionFileTest, AFailedRecoveryWriteGoesToTheErrorCallback) {

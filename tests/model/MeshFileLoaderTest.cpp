@@ -250,6 +250,60 @@ TEST_F(MeshFiles, BadFilesGiveOneLineNamingTheFile) {
     }
 }
 
+/// The OBJ reader checks every number of v, vn and vt lines itself (tinyobjloader reads what it
+/// cannot parse as 0): a fast syntax check for plain decimals, std::from_chars for the rest.
+TEST_F(MeshFiles, ObjCoordinatesAreCheckedInEverySpelling) {
+    const std::string good = "v +1.5 .5 5.\nv 1e5 -0 1E-05\n  v\t0 1 0 # a comment\nvn 0 0 1\nvt 0.25 1e+2\n"
+                             "v 123456789012345678901234567890 0 1e-99\nf 1 2 3\nf 1 2 4\n";
+    const Scene scene = loadScene(write("spellings.obj", good));
+    EXPECT_EQ(scene.triangleCount(), 2u);
+    const struct {
+        const char *coordinate, *expected;
+    } bad[] = {
+        {"1e999", "'1e999' is not finite"},    {"-inf", "'-inf' is not finite"},  {"nan", "'nan' is not finite"},
+        {"1e-400", "'1e-400' is not finite"},  {"1.2.3", "'1.2.3' is not a number"}, {"1e", "'1e' is not a number"},
+        {"0x10", "'0x10' is not a number"},    {"--1", "'--1' is not a number"},  {".", "'.' is not a number"},
+    };
+    for (const auto &c : bad) {
+        SCOPED_TRACE(c.coordinate);
+        const std::string path = write("bad-number.obj", std::string("v 0 0 0\nv 1 0 0\nvn 0 ") + c.coordinate + " 1\nv 0 1 0\nf 1 2 3\n");
+        const std::string error = errorOf([&] { loadScene(path); });
+        EXPECT_NE(error.find("line 3: vn coordinate " + std::string(c.expected)), std::string::npos) << error;
+    }
+}
+
+/// What tinyobjloader's two interfaces must agree on: the callback one (files without vertex
+/// colours) and LoadObj (with them).
+TEST_F(MeshFiles, ObjGroupsObjectsRelativeIndicesAndVertexColoursReadAlike) {
+    const std::string body = "f -3 -2 -1\ng left side\nf 1 2 3\nusemtl nowhere\nf 1 3 4\no thing\nf 2 3 4\nl 1 2\n";
+    const std::string plain = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n" + body;
+    const std::string coloured = "v 0 0 0 1 0 0\nv 1 0 0 1 0 0\nv 0 1 0 1 0 0\nv 0 0 1 1 0 0\n" + body;
+    for (const bool hasColours : {false, true}) {
+        const std::string &text = hasColours ? coloured : plain;
+        SCOPED_TRACE(hasColours ? "vertex colours (LoadObj)" : "no colours (callbacks)");
+        const Scene scene = loadScene(write(hasColours ? "coloured.obj" : "plain.obj", text));
+        // A material missing from the library is no material: the group stays one mesh.
+        ASSERT_EQ(scene.meshes.size(), 3u);
+        EXPECT_EQ(scene.meshes[0].name, hasColours ? "coloured" : "plain") << "faces before any group: the file's stem";
+        EXPECT_EQ(scene.meshes[0].indices[0], glm::uvec3(0, 1, 2)) << "f -3 -2 -1 after 4 vertices";
+        EXPECT_EQ(scene.meshes[1].name, "left side") << "a g line's names, joined";
+        EXPECT_EQ(scene.meshes[1].indices.size(), 2u);
+        EXPECT_EQ(scene.meshes[2].name, "thing");
+        EXPECT_NE(scene.meshes[1].sourceNode, scene.meshes[2].sourceNode);
+        EXPECT_EQ(scene.triangleCount(), 4u);
+        const auto warned = [&](const std::string &what) {
+            return std::any_of(scene.report.warnings.begin(), scene.report.warnings.end(),
+                               [&](const std::string &w) { return w.find(what) != std::string::npos; });
+        };
+        EXPECT_TRUE(warned("'nowhere' ] not found"));
+        EXPECT_TRUE(warned("lines and points are skipped"));
+        EXPECT_EQ(warned("vertex colours are averaged"), hasColours);
+    }
+    const std::string zero = errorOf([&] { loadScene(write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n")); });
+    EXPECT_NE(zero.find("zero.obj: "), std::string::npos) << zero;
+    EXPECT_NE(zero.find("index 0"), std::string::npos) << zero;
+}
+
 TEST_F(MeshFiles, MisleadingExtensionIsReadByContentWithAWarning) {
     const Scene scene = loadScene(write("really-a-ply.stl", ply(cubeMesh(), PlyEncoding::BigEndian)));
     EXPECT_EQ(scene.triangleCount(), 12u);
@@ -273,6 +327,55 @@ TEST(MeshFilesByOtherTools, CgalSamplesLoad) {
     // Its extra element (edges with a confidence) is skipped with a warning, not an error.
     EXPECT_TRUE(std::any_of(tetra.report.warnings.begin(), tetra.report.warnings.end(),
                             [](const std::string &w) { return w.find("not read") != std::string::npos; }));
+}
+
+TEST(MeshFilesByOtherTools, AssimpObjSamplesLoadWithTheirGroupsAndMaterials) {
+    const fs::path dir = fs::path(MVCL_TEST_DATA_DIR) / "meshes/assimp";
+    // MilkShape 3D's export: a mesh per group, its material from the library.
+    const Scene spider = loadScene((dir / "spider.obj").string());
+    ASSERT_EQ(spider.meshes.size(), 19u);
+    EXPECT_EQ(spider.triangleCount() + spider.report.degenerateTrianglesDropped, 1368u);
+    EXPECT_EQ(spider.report.degenerateTrianglesDropped, 56u);
+    const std::vector<std::string> groups = {"HLeib01", "OK", "Bein1Li", "Bein1Re", "Bein2Li", "Bein2Re", "Bein3Re",
+                                             "Bein3Li", "Bein4Re", "Bein4Li", "Zahn", "klZahn", "Kopf", "Brust",
+                                             "Kopf2", "Zahn2", "klZahn2", "Auge", "Duplicate05"};
+    const std::vector<std::string> materialOfGroup = {"HLeibTex", "Skin", "BeinTex", "BeinTex", "BeinTex", "BeinTex",
+                                                      "BeinTex", "BeinTex", "BeinTex", "BeinTex", "BeinTex", "BeinTex",
+                                                      "Skin", "Skin", "Skin", "BeinTex", "BeinTex", "Augentex", "Augentex"};
+    for (std::size_t i = 0; i < groups.size(); ++i) {
+        SCOPED_TRACE(groups[i]);
+        EXPECT_EQ(spider.meshes[i].name, groups[i]);
+        EXPECT_EQ(spider.materials[spider.meshes[i].material].name, materialOfGroup[i]);
+    }
+    EXPECT_EQ(spider.meshes[0].indices.size(), 80u);
+    EXPECT_EQ(spider.meshes[0].closure, MeshClosure::Outward) << "the abdomen is a closed solid";
+    EXPECT_EQ(spider.meshes[2].normals.size(), spider.meshes[2].positions.size()) << "its vn are read";
+    const auto skin = std::find_if(spider.materials.begin(), spider.materials.end(),
+                                   [](const Material &m) { return m.name == "Skin"; });
+    ASSERT_NE(skin, spider.materials.end());
+    EXPECT_NEAR(skin->diffuse.r, 0.827451f, 1e-6f);
+    EXPECT_NEAR(skin->diffuse.b, 0.772549f, 1e-6f);
+
+    // One group in three materials (one missing from the library): three meshes that bound one
+    // solid together, so clip volumes cap the cube.
+    const Scene cube = loadScene((dir / "cube_usemtl.obj").string());
+    ASSERT_EQ(cube.meshes.size(), 3u);
+    EXPECT_EQ(cube.triangleCount(), 12u);
+    std::vector<std::string> materials;
+    for (const TriangleMesh &m : cube.meshes) {
+        EXPECT_EQ(m.name, "cube");
+        EXPECT_EQ(m.closure, MeshClosure::Outward) << cube.materials[m.material].name;
+        materials.push_back(cube.materials[m.material].name);
+    }
+    EXPECT_EQ(materials, (std::vector<std::string>{"default", "mtl", "mtl2"}));
+    EXPECT_TRUE(std::any_of(cube.report.warnings.begin(), cube.report.warnings.end(),
+                            [](const std::string &w) { return w.find("'mtl3' ] not found") != std::string::npos; }));
+    // The same file twice as layers: each file's group is a solid of its own.
+    const std::vector<std::string> twice = {(dir / "cube_usemtl.obj").string(), (dir / "cube_usemtl.obj").string()};
+    const Scene layered = loadScene(std::span<const std::string>(twice));
+    ASSERT_EQ(layered.meshes.size(), 6u);
+    EXPECT_EQ(layered.meshes[0].sourceNode, layered.meshes[2].sourceNode);
+    EXPECT_NE(layered.meshes[0].sourceNode, layered.meshes[3].sourceNode);
 }
 
 TEST(LayerRuleNames, FromTextAndJson) {

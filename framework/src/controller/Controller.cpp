@@ -36,6 +36,7 @@ SessionState Controller::Private::captureState() const {
     state.visibleLayers = visibleLayers;
     state.lenses = statesOf(leftStack());
     if (compare) state.compare = CompareState{statesOf(rightStack()), compare->divider};
+    state.layerNames = layerNames;
     return state;
 }
 
@@ -82,6 +83,7 @@ void Controller::Private::restore(const Step &step) {
         visibleLayers = target.visibleLayers;
         sendBasePolicy();
     }
+    if (layerNames != target.layerNames) setLayerNames(target.layerNames);
     selected = step.selected < stack.size() ? step.selected : -1;
 }
 
@@ -93,6 +95,7 @@ RenderSettings Controller::Private::sessionSettings() const {
 }
 
 void Controller::Private::sendLenses() {
+    stateTouched = true;
     placeLenses();
     if (compare) session->setLensStacks(leftStack(), rightStack(), compare->divider);
     else session->setLensStack(stack);
@@ -117,7 +120,8 @@ void Controller::Private::finishStep(const Step &before, StepKind kind) {
     }
     redoSteps.clear();
     lastStep = kind;
-    writeRecovery();
+    stateTouched = true; // a label changes no rendering, so no send*() said so
+    passRecovery();
 }
 
 void Controller::Private::clearHistory() {
@@ -126,18 +130,40 @@ void Controller::Private::clearHistory() {
     lastStep = StepKind::Other;
 }
 
-void Controller::Private::writeRecovery() {
-    if (document) {
-        document->writeRecovery();
+void Controller::Private::passRecovery() {
+    if (document) { // the document's recovery copy holds every view
+        const bool changed = stateTouched;
+        stateTouched = false;
+        document->passRecovery(changed);
         return;
     }
-    const std::filesystem::path path = q.recoveryPath();
-    if (path.empty()) return;
+    recovery.setPath(q.recoveryPath());
+    const RecoveryWriter::Describe describe = [this] { return SessionDescription::fromView(q.description()); };
     try {
-        writeLensStackFile(path, q.description());
+        if (stateTouched) {
+            stateTouched = false;
+            unsaved = true;
+            recovery.sessionChanged(describe);
+        } else {
+            recovery.update(describe);
+        }
+        lastRecoveryError.clear();
     } catch (const Error &e) {
-        report(Error(e.source(), "recovery copy not written: " + e.problem()));
+        const Error error(e.source(), "recovery copy not written: " + e.problem());
+        if (error.what() == lastRecoveryError) return; // tried again one interval later: said already
+        lastRecoveryError = error.what();
+        report(error);
     }
+}
+
+RecoveryWriter &Controller::Private::recoveryWriter() { return document ? document->recovery : recovery; }
+
+void Controller::Private::markSaved() {
+    if (document) return document->markSaved();
+    stateTouched = false;
+    unsaved = false;
+    recovery.setPath(q.recoveryPath());
+    recovery.clearPending();
 }
 
 void Controller::Private::reportLensFaults() {
@@ -169,6 +195,7 @@ void Controller::Private::replaceScene(std::shared_ptr<const Scene> newScene, st
     session = std::move(newSession);
     tracer = std::move(newTracer);
     scene = std::move(newScene);
+    layerNames.clear();
     sendCamera();
     sendBasePolicy();
     sendLenses();
@@ -187,10 +214,13 @@ Controller::Controller(const LensRegistry &registry, const ViewRequest &request,
     d->camera = setup.camera(*scene, request, float(d->viewSize.x) / float(d->viewSize.y));
     d->visibleLayers = setup.session.visibleLayers;
     d->stack = setup.session.lenses;
+    std::map<int, std::string> layerNames = std::move(setup.session.layerNames);
     setup.session = {}; // the controller's stack is the one that is edited
     d->setup = std::move(setup);
     d->replaceScene(std::move(scene), std::move(tracer));
+    d->setLayerNames(std::move(layerNames));
     if (!request.sessionFile.empty()) d->sessionPath = request.sessionFile;
+    d->markSaved(); // what was opened is not a change to recover; an old copy stays for hasRecovery()
 }
 
 Controller::Controller(Document &document, int index, const Camera &camera, const RenderSettings &settings)
@@ -245,14 +275,16 @@ void Controller::openScenes(const std::vector<std::string> &sources, const Scene
     d->visibleLayers = kAllLayers;
     d->replaceScene(std::move(scene), std::move(tracer));
     d->clearHistory();
-    d->writeRecovery();
+    d->passRecovery(); // another model is a change of the session
     if (d->sceneChangedCallback) d->sceneChangedCallback();
 }
 
 // --- session files ----------------------------------------------------------------------------------
 
 LensStackDescription Controller::description() const {
-    return d->setup.describe(*d->scene, d->camera, d->leftStack(), d->visibleLayers);
+    LensStackDescription description = d->setup.describe(*d->scene, d->camera, d->leftStack(), d->visibleLayers);
+    description.layerNames = d->layerNames;
+    return description;
 }
 
 void Controller::saveSession(const std::filesystem::path &file) {
@@ -261,7 +293,13 @@ void Controller::saveSession(const std::filesystem::path &file) {
         return;
     }
     writeLensStackFile(file, description());
+    // Saved: the copy of the unsaved state has nothing left to recover, where it was and where
+    // the new session path puts it.
+    d->recovery.setPath(recoveryPath());
+    d->recovery.discard();
     d->sessionPath = file;
+    d->markSaved();
+    d->recovery.discard();
 }
 
 void Controller::loadSession(const std::filesystem::path &file) {
@@ -296,6 +334,7 @@ void Controller::loadSession(const std::filesystem::path &file) {
     d->stack = setup.session.lenses;
     d->compare.reset();
     d->selected = -1;
+    std::map<int, std::string> layerNames = std::move(setup.session.layerNames);
     setup.session = {};
     d->setup = std::move(setup);
     if (sameScene) {
@@ -305,9 +344,10 @@ void Controller::loadSession(const std::filesystem::path &file) {
     } else {
         d->replaceScene(std::move(scene), std::move(tracer));
     }
+    d->setLayerNames(std::move(layerNames));
     d->sessionPath = file;
     d->clearHistory();
-    d->writeRecovery();
+    d->markSaved();
     if (!sameScene && d->sceneChangedCallback) d->sceneChangedCallback();
 }
 
@@ -325,6 +365,63 @@ std::filesystem::path Controller::recoveryPath() const {
     if (!d->explicitRecoveryPath.empty()) return d->explicitRecoveryPath;
     if (!d->sessionPath.empty()) return defaultRecoveryPath(d->sessionPath);
     return {};
+}
+
+void Controller::setRecoveryInterval(std::chrono::milliseconds interval) { d->recoveryWriter().setInterval(interval); }
+std::chrono::milliseconds Controller::recoveryInterval() const { return d->recoveryWriter().interval(); }
+void Controller::updateRecovery() { d->passRecovery(); }
+bool Controller::hasUnsavedChanges() const {
+    if (!d->document) return d->unsaved || d->stateTouched;
+    if (d->document->unsaved) return true;
+    for (const std::unique_ptr<Controller> &view : d->document->views)
+        if (view->d->stateTouched) return true;
+    return false;
+}
+
+void Controller::finishRecovery() {
+    d->passRecovery();
+    if (!hasUnsavedChanges()) {
+        d->recoveryWriter().discard();
+        return;
+    }
+    try {
+        if (d->document) d->document->recovery.flush([this] { return d->document->owner.description(); });
+        else d->recovery.flush([this] { return SessionDescription::fromView(description()); });
+    } catch (const Error &e) {
+        d->report(Error(e.source(), "recovery copy not written: " + e.problem()));
+    }
+}
+
+bool Controller::hasRecovery() const {
+    namespace fs = std::filesystem;
+    const fs::path recovery = recoveryPath();
+    std::error_code ec;
+    if (recovery.empty() || !fs::is_regular_file(recovery, ec)) return false;
+    const fs::file_time_type recovered = fs::last_write_time(recovery, ec);
+    if (ec) return false;
+    const fs::path &session = sessionPath();
+    if (session.empty() || !fs::is_regular_file(session, ec)) return true; // never saved
+    const fs::file_time_type saved = fs::last_write_time(session, ec);
+    return ec || recovered > saved;
+}
+
+void Controller::restoreRecovery() {
+    const std::filesystem::path recovery = recoveryPath();
+    const std::filesystem::path session = sessionPath();
+    std::filesystem::path &explicitPath = d->document ? d->document->explicitRecoveryPath : d->explicitRecoveryPath;
+    const std::filesystem::path explicitBefore = explicitPath;
+    loadSession(recovery);
+    // The session is still the one the user opened; the restored state is not saved in it yet,
+    // and the copy holds it until it is.
+    (d->document ? d->document->sessionPath : d->sessionPath) = session;
+    explicitPath = explicitBefore;
+    d->recoveryWriter().setPath(recoveryPath());
+    (d->document ? d->document->unsaved : d->unsaved) = true;
+}
+
+void Controller::discardRecovery() {
+    d->recoveryWriter().setPath(recoveryPath());
+    d->recoveryWriter().discard();
 }
 
 std::filesystem::path Controller::defaultRecoveryPath(const std::filesystem::path &sessionFile) {
@@ -483,7 +580,8 @@ void Controller::undo() {
     d->undoSteps.pop_back();
     d->redoSteps.push_back(current);
     d->lastStep = Private::StepKind::Other;
-    d->writeRecovery();
+    d->stateTouched = true;
+    d->passRecovery();
 }
 
 void Controller::redo() {
@@ -497,7 +595,8 @@ void Controller::redo() {
     d->redoSteps.pop_back();
     d->undoSteps.push_back(current);
     d->lastStep = Private::StepKind::Other;
-    d->writeRecovery();
+    d->stateTouched = true;
+    d->passRecovery();
 }
 
 bool Controller::canUndo() const {

@@ -3,6 +3,7 @@
 
 #include <mvcl/controller/Controller.h>
 #include <mvcl/controller/Document.h>
+#include <mvcl/controller/RecoveryWriter.h>
 #include <mvcl/controller/ViewSetup.h>
 #include <mvcl/io/ViewLink.h>
 #include <mvcl/lens/LensRegistry.h>
@@ -83,6 +84,7 @@ struct Controller::Private {
     // The editable state.
     Camera camera;
     uint32_t visibleLayers = kAllLayers;
+    std::map<int, std::string> layerNames;      ///< renamed layers (setLayerName)
     LensStack stack;
     int selected = -1;
 
@@ -104,6 +106,11 @@ struct Controller::Private {
 
     std::filesystem::path sessionPath;
     std::filesystem::path explicitRecoveryPath;
+    RecoveryWriter recovery;      ///< a Controller of its own; a document's views use the document's
+    RecoveryWriter &recoveryWriter();
+    bool stateTouched = false;    ///< send*() ran since the recovery writer last heard of it
+    bool unsaved = false;         ///< the state changed since the session was loaded or saved
+    std::string lastRecoveryError; ///< reported once, not at every retry
     std::function<void(const Error &)> errorCallback;
     std::function<void()> sceneChangedCallback;
 
@@ -118,7 +125,10 @@ struct Controller::Private {
     /// whose contribution that changes (LensContext), so that their snapshots (picking, files)
     /// agree with the image. A lens that cannot commit in the new context keeps its snapshot.
     void placeLenses();
+    // Every change of the session state goes through these three, drag moves included; they
+    // mark it for the recovery copy (passRecovery).
     void sendCamera() {
+        stateTouched = true;
         placeLenses();
         session->setCamera(camera);
         tellDocument(LinkAspect::Camera);
@@ -130,6 +140,7 @@ struct Controller::Private {
     void reportLensFaults();
     std::map<const Lens *, std::string> reportedFaults;
     void sendBasePolicy() {
+        stateTouched = true;
         session->setBasePolicy(basePolicy());
         tellDocument(LinkAspect::Layers);
     }
@@ -139,11 +150,16 @@ struct Controller::Private {
     /// state; throws (changing nothing) when a lens cannot be built.
     LensStack rebuiltStack(const LensStack &current, const std::vector<LensState> &wanted) const;
     RenderSettings sessionSettings() const;
-    /// Ends an edit that started at `before`: one undo step if anything changed, then the
-    /// recovery copy.
+    /// Ends an edit that started at `before`: one undo step if anything changed; the change
+    /// goes to the recovery writer.
     void finishStep(const Step &before, StepKind kind);
     void clearHistory();
-    void writeRecovery();
+    /// Tells the recovery writer about changes since the last call (it writes when due) and
+    /// gives it a pending write that is due. Called after every edit step and once a frame
+    /// (Controller::updateRecovery); a failed write goes to the error callback, once.
+    void passRecovery();
+    /// The state as it is now is the session file's (loaded or saved): nothing to recover.
+    void markSaved();
     /// The error callback, or a throw without one.
     void report(const Error &error) const;
     /// Runs `apply` as one step (or as part of the open one).
@@ -164,6 +180,10 @@ struct Controller::Private {
     void editInDocument(StepKind kind, const std::function<void()> &apply);
     /// Takes over a newly loaded scene; stops and replaces the RenderSession.
     void replaceScene(std::shared_ptr<const Scene> newScene, std::shared_ptr<const Tracer> newTracer);
+
+    // --- layer names (ControllerLayerNames.cpp) ---
+    /// Takes `names` as the renamed layers and shows them in the scene's layer table.
+    void setLayerNames(std::map<int, std::string> names);
 
     // --- lenses (ControllerLenses.cpp) ---
     /// Throws mvcl::Error for an index outside the stack.

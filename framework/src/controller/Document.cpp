@@ -202,14 +202,30 @@ std::filesystem::path Document::Private::recoveryPath() const {
     return {};
 }
 
-void Document::Private::writeRecovery() {
-    const std::filesystem::path path = recoveryPath();
-    if (path.empty()) return;
+void Document::Private::passRecovery(bool changed) {
+    recovery.setPath(recoveryPath());
+    const RecoveryWriter::Describe describe = [this] { return owner.description(); };
     try {
-        writeSessionFile(path, owner.description());
+        if (changed) {
+            unsaved = true;
+            recovery.sessionChanged(describe);
+        } else {
+            recovery.update(describe);
+        }
+        lastRecoveryError.clear();
     } catch (const Error &e) {
-        report(Error(e.source(), "recovery copy not written: " + e.problem()));
+        const Error error(e.source(), "recovery copy not written: " + e.problem());
+        if (error.what() == lastRecoveryError) return; // tried again one interval later: said already
+        lastRecoveryError = error.what();
+        report(error);
     }
+}
+
+void Document::Private::markSaved() {
+    unsaved = false;
+    for (const std::unique_ptr<Controller> &v : views) v->d->stateTouched = false;
+    recovery.setPath(recoveryPath());
+    recovery.clearPending();
 }
 
 void Document::Private::report(const Error &error) const {
@@ -244,6 +260,8 @@ Document::Document(const LensRegistry &registry, const ViewRequest &request, con
             d->setView(i, cameras[std::size_t(i)], v.visibleLayers, v.lenses, v.compare);
         }
     }
+    // The session's renamed layers, in every view (a view keeps its renames beside the shared scene).
+    for (int i = 0; i < count; ++i) d->viewOf(i).setLayerNames(first.layerNames);
     if (file) {
         d->links = file->links;
         d->layout = file->layout;
@@ -252,6 +270,7 @@ Document::Document(const LensRegistry &registry, const ViewRequest &request, con
         d->sharePreviewBudget();
     }
     if (!request.sessionFile.empty()) d->sessionPath = request.sessionFile;
+    d->markSaved(); // what was opened is not a change to recover; an old copy stays for hasRecovery()
 }
 
 Document::~Document() { stopRendering(); }
@@ -444,7 +463,13 @@ SessionDescription Document::description() const {
 
 void Document::saveSession(const std::filesystem::path &file) {
     writeSessionFile(file, description());
+    // Saved: the copy of the unsaved state has nothing left to recover, where it was and where
+    // the new session path puts it.
+    d->recovery.setPath(d->recoveryPath());
+    d->recovery.discard();
     d->sessionPath = file;
+    d->markSaved();
+    d->recovery.discard();
 }
 
 void Document::loadSession(const std::filesystem::path &file) {
@@ -502,6 +527,7 @@ void Document::loadSession(const std::filesystem::path &file) {
     for (int i = 0; i < count; ++i) {
         const SessionViewDescription &v = described.views[std::size_t(i)];
         d->setView(i, cameras[std::size_t(i)], v.visibleLayers, v.lenses, v.compare);
+        d->viewOf(i).setLayerNames(described.common.layerNames);
     }
     --d->linksMuted;
     d->links = described.links;
@@ -511,7 +537,7 @@ void Document::loadSession(const std::filesystem::path &file) {
     d->sharePreviewBudget();
     d->sessionPath = file;
     d->clearHistory();
-    d->writeRecovery();
+    d->markSaved(); // what was opened is not a change to recover; an old copy stays for hasRecovery()
     if (viewsChange) d->viewsChanged();
 }
 

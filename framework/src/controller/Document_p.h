@@ -6,11 +6,13 @@
 
 #include "Controller_p.h"
 
+#include <mvcl/controller/RecoveryWriter.h>
 #include <mvcl/controller/ViewSetup.h>
 
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace mvcl {
@@ -95,8 +97,17 @@ struct Document::Private {
     void finishStep(const Step &before, bool zoom);
     void clearHistory();
 
+    // --- recovery (the copy holds every view; the views' Controllers forward to it) ---
+    RecoveryWriter recovery;
+    bool unsaved = false;          ///< the session changed since it was loaded or saved
+    std::string lastRecoveryError; ///< reported once, not at every retry
+    /// A change of the session (`changed`), or a frame's chance for the trailing write.
+    void passRecovery(bool changed);
+    /// What was loaded or saved is no change to recover.
+    void markSaved();
+
     // --- files ---
-    void writeRecovery();
+    void writeRecovery() { passRecovery(true); }
     std::filesystem::path recoveryPath() const;
     void saveSession(const std::filesystem::path &file) { owner.saveSession(file); }
     void loadSession(const std::filesystem::path &file) { owner.loadSession(file); }

@@ -122,7 +122,14 @@ LensStackDescription ViewSetup::describe(const Scene &scene, const Camera &camer
 }
 
 LensStackDescription ViewSetup::describe(const Scene &scene, const Camera &camera) const {
-    return describe(scene, camera, session.lenses, session.visibleLayers);
+    LensStackDescription description = describe(scene, camera, session.lenses, session.visibleLayers);
+    description.layerNames = session.layerNames;
+    return description;
+}
+
+void ViewSetup::renameLayers(Scene &scene) const {
+    for (const auto &[id, name] : session.layerNames)
+        if (scene.layers.find(id)) scene.layers.ensure(id).name = name;
 }
 
 } // namespace mvcl

@@ -9,6 +9,7 @@
 #include <mvcl/lens/LensRegistry.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <span>
 #include <vector>
@@ -162,7 +163,7 @@ namespace detail {
 LensStackDescription readDescription(const Json &document, const LensRegistry &registry,
                                      const JsonLocation &where) {
     static constexpr std::string_view kTopKeys[] = {"version", "scene", "camera", "layerRules", "visibleLayers",
-                                                    "layerContact", "memoryBudgetMiB", "lenses"};
+                                                    "layerContact", "memoryBudgetMiB", "layerNames", "lenses"};
     expectObject(document, where);
     rejectUnknownKeys(document, kTopKeys, where);
     expectVersion(document, kFileVersion, where);
@@ -210,6 +211,21 @@ LensStackDescription readDescription(const Json &document, const LensRegistry &r
         if (!budget.is_number_integer() || budget.get<long long>() < 1 || budget.get<long long>() > (1ll << 40))
             where.key("memoryBudgetMiB").fail("expected a whole number of MiB ≥ 1, got " + budget.dump());
         description.memoryBudgetBytes = std::uint64_t(budget.get<long long>()) << 20;
+    }
+    if (document.contains("layerNames")) {
+        const JsonLocation namesWhere = where.key("layerNames");
+        const Json &names = document["layerNames"];
+        if (!names.is_object()) namesWhere.fail("expected an object of layer number → name, e.g. {\"2\": \"bone\"}");
+        for (auto it = names.begin(); it != names.end(); ++it) {
+            const JsonLocation nameWhere = namesWhere.key(it.key());
+            int layer = -1;
+            const auto [end, ec] = std::from_chars(it.key().data(), it.key().data() + it.key().size(), layer);
+            if (ec != std::errc() || end != it.key().data() + it.key().size() || layer < 0 || layer >= kMaxLayers)
+                nameWhere.fail("a layer number 0.." + std::to_string(kMaxLayers - 1) + " is expected as the key");
+            std::string name = readString(it.value(), nameWhere);
+            if (name.empty()) nameWhere.fail("a layer name must not be empty");
+            description.layerNames[layer] = std::move(name);
+        }
     }
     if (document.contains("lenses")) {
         const JsonLocation lensesWhere = where.key("lenses");
@@ -308,6 +324,11 @@ Json descriptionJson(const LensStackDescription &description) {
         json["layerContact"] = {{contact.measure == LayerContact::Measure::SceneUnits ? "sceneUnits" : "relative",
                                  contact.distance}};
     if (description.memoryBudgetBytes > 0) json["memoryBudgetMiB"] = std::max<std::uint64_t>(description.memoryBudgetBytes >> 20, 1);
+    if (!description.layerNames.empty()) {
+        Json names = Json::object();
+        for (const auto &[layer, name] : description.layerNames) names[std::to_string(layer)] = name;
+        json["layerNames"] = std::move(names);
+    }
     Json lenses = Json::array();
     for (const std::shared_ptr<Lens> &lens : description.lenses.lenses()) lenses.push_back(lensJson(*lens));
     json["lenses"] = std::move(lenses);
@@ -398,7 +419,7 @@ bool operator==(const LensStackDescription &a, const LensStackDescription &b) {
         return sameCommittedLens(*x, *y);
     };
     return a.scene == b.scene && a.moreScenes == b.moreScenes && a.camera == b.camera && a.visibleLayers == b.visibleLayers &&
-           a.layerContact == b.layerContact && a.memoryBudgetBytes == b.memoryBudgetBytes &&
+           a.layerContact == b.layerContact && a.memoryBudgetBytes == b.memoryBudgetBytes && a.layerNames == b.layerNames &&
            std::ranges::equal(a.layerRules.rules(), b.layerRules.rules(), sameRule) &&
            std::ranges::equal(a.lenses.lenses(), b.lenses.lenses(), sameLens);
 }

@@ -85,6 +85,7 @@ Scene readSource(std::string_view source, const SceneLoadOptions &options) {
         meshOptions.layerRules = options.layerRules;
         meshOptions.upAxis = options.upAxis;
         meshOptions.unit = options.unit;
+        meshOptions.maxGeometryBytes = options.memoryBudgetBytes ? options.memoryBudgetBytes : defaultMemoryBudgetBytes();
         const MeshFormat meshFormat = format == detail::ModelFormat::Obj   ? MeshFormat::Obj
                                       : format == detail::ModelFormat::Stl ? MeshFormat::Stl
                                                                            : MeshFormat::Ply;
@@ -147,8 +148,10 @@ Scene mergeScenes(std::vector<Scene> parts, std::span<const std::string> sources
     Scene merged;
     merged.name = describeSources(sources);
     merged.worldOrigin = 0.5 * (lo + hi);
+    int nodeBase = 0; // a solid is one (sourceNode, sourceMesh) pair within a file: keep files apart
     for (std::size_t i = 0; i < parts.size(); ++i) {
         Scene &s = parts[i];
+        int nodesOfFile = 0;
         const glm::dvec3 shift = s.worldOrigin - merged.worldOrigin;
         const auto move = [&shift](glm::vec3 p) { return glm::vec3(glm::dvec3(p) + shift); };
         const auto materialBase = uint32_t(merged.materials.size());
@@ -164,6 +167,10 @@ Scene mergeScenes(std::vector<Scene> parts, std::span<const std::string> sources
         const std::string stem = std::filesystem::path(sources[i]).stem().string();
         merged.layers.ensure(int(i)).name = stem;
         for (TriangleMesh &m : s.meshes) {
+            if (m.sourceNode >= 0) {
+                nodesOfFile = std::max(nodesOfFile, m.sourceNode + 1);
+                m.sourceNode += nodeBase;
+            }
             for (glm::vec3 &p : m.positions) p = move(p);
             m.material += materialBase;
             if (m.layerSource != LayerSource::Rule) {
@@ -172,6 +179,7 @@ Scene mergeScenes(std::vector<Scene> parts, std::span<const std::string> sources
             }
             merged.meshes.push_back(std::move(m));
         }
+        nodeBase += nodesOfFile;
         for (Light l : s.lights) {
             l.position = move(l.position);
             merged.lights.push_back(l);

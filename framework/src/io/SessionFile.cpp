@@ -16,9 +16,9 @@ constexpr int kSessionVersion = 2;
 /// A layout shows at most four views; a file holds no more.
 constexpr std::size_t kMaxViews = 4;
 
-constexpr std::string_view kSceneKeys[] = {"scene", "layerRules", "layerContact", "memoryBudgetMiB"};
-constexpr std::string_view kTopKeys[] = {"version",         "scene", "layerRules", "layerContact",
-                                         "memoryBudgetMiB", "views", "links",      "layout", "focus"};
+constexpr std::string_view kSceneKeys[] = {"scene", "layerRules", "layerContact", "memoryBudgetMiB", "layerNames"};
+constexpr std::string_view kTopKeys[] = {"version",         "scene", "layerRules", "layerContact", "memoryBudgetMiB",
+                                         "layerNames",      "views", "links",      "layout", "focus"};
 constexpr std::string_view kViewKeys[] = {"camera", "visibleLayers", "lenses", "compare"};
 constexpr std::string_view kCompareKeys[] = {"divider", "lenses"};
 constexpr std::string_view kLinkKeys[] = {"views", "camera", "lenses", "layers"};

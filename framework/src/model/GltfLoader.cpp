@@ -151,17 +151,6 @@ std::vector<std::uint8_t> withJson(std::span<const std::uint8_t> original, bool 
     return out;
 }
 
-std::string mebibytes(double bytes) { return std::to_string(std::llround(bytes / double(1 << 20))) + " MiB"; }
-
-/// Throws when the estimated geometry does not fit the budget (the caller names the file).
-void refuseOverBudget(const gltf::GltfMemoryEstimate &estimate, std::uint64_t budgetBytes) {
-    if (estimate.bytes <= double(budgetBytes)) return;
-    throw Error("", "its geometry would need about " + mebibytes(estimate.bytes) + " (" +
-                        std::to_string(std::llround(estimate.triangles)) + " triangles, " +
-                        std::to_string(std::llround(estimate.vertices)) + " vertices: meshes and BVH), more than the memory budget of " +
-                        mebibytes(double(budgetBytes)) + "; refused before loading it");
-}
-
 } // namespace
 
 Scene loadGltf(const std::filesystem::path &path, const GltfLoadOptions &options) {
@@ -247,7 +236,7 @@ Scene loadGltfFromMemory(std::span<const std::uint8_t> bytes, const std::string 
         gltf::GltfContext context(model, name, scene.report);
         gltf::GltfValidator validator(context);
         validator.validate();
-        if (options.maxGeometryBytes > 0) refuseOverBudget(gltf::estimateGeometryMemory(context, validator), options.maxGeometryBytes);
+        if (options.maxGeometryBytes > 0) detail::refuseOverBudget(gltf::estimateGeometryMemory(context, validator), options.maxGeometryBytes);
         gltf::GltfMaterialBuilder materials(context, images, options, scene);
         materials.build();
         gltf::GltfSceneBuilder builder(context, validator, options, scene);

@@ -59,24 +59,23 @@ private:
     std::vector<PositionKey> m_keys;
 };
 
-/// An edge between welded vertices, undirected, with the direction a triangle used it in.
-struct UsedEdge {
-    uint32_t low;  ///< the smaller vertex number
-    uint32_t high; ///< the larger
-    bool upward;   ///< the triangle went from `low` to `high`
-};
-
 /// Closed: every undirected edge is used exactly twice, once in each direction. The uses are
-/// grouped by their smaller vertex (a counting sort, linear), and each vertex's few uses are
-/// checked among themselves.
-bool everyEdgeUsedOnceEachWay(const std::vector<UsedEdge> &edges, size_t vertices) {
+/// grouped by their smaller vertex (a counting sort over the triangles, linear, with no list of
+/// edges in between: a million triangles make three million uses), and each vertex's few uses
+/// are checked among themselves.
+bool everyEdgeUsedOnceEachWay(const std::vector<glm::uvec3> &triangles, size_t vertices) {
+    if (vertices >= (size_t(1) << 31)) return false; // a use is (high << 1 | upward) in 32 bits
+    const auto forEachUse = [&triangles](auto &&use) {
+        for (const glm::uvec3 &t : triangles)
+            for (const auto &[from, to] : {std::pair{t.x, t.y}, std::pair{t.y, t.z}, std::pair{t.z, t.x}})
+                use(std::min(from, to), std::max(from, to), from < to);
+    };
     std::vector<uint32_t> start(vertices + 1, 0);
-    for (const UsedEdge &e : edges) ++start[e.low + 1];
+    forEachUse([&start](uint32_t low, uint32_t, bool) { ++start[low + 1]; });
     for (size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
-    // Each use as (high << 1 | upward), in its vertex's slice.
-    std::vector<uint64_t> uses(edges.size());
+    std::vector<uint32_t> uses(3 * triangles.size());
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (const UsedEdge &e : edges) uses[fill[e.low]++] = uint64_t(e.high) << 1 | uint64_t(e.upward);
+    forEachUse([&](uint32_t low, uint32_t high, bool upward) { uses[fill[low]++] = high << 1 | uint32_t(upward); });
     for (size_t v = 0; v < vertices; ++v) {
         const auto first = uses.begin() + start[v], last = uses.begin() + start[v + 1];
         if ((last - first) % 2 != 0) return false;
@@ -96,8 +95,8 @@ MeshClosure closureOf(const Scene &scene, const std::vector<size_t> &group) {
         triangles += scene.meshes[meshIndex].indices.size();
     }
     PositionWelder welder(positions);
-    std::vector<UsedEdge> edges;
-    edges.reserve(3 * triangles);
+    std::vector<glm::uvec3> welded; ///< the triangles over welded vertices, degenerate ones left out
+    welded.reserve(triangles);
     double sixTimesVolume = 0.0;
     std::vector<uint32_t> weldedIndex;
     for (const size_t meshIndex : group) {
@@ -109,13 +108,12 @@ MeshClosure closureOf(const Scene &scene, const std::vector<size_t> &group) {
                 return MeshClosure::Open;
             const uint32_t a = weldedIndex[tri.x], b = weldedIndex[tri.y], c = weldedIndex[tri.z];
             if (a == b || b == c || c == a) continue;
-            for (const auto &[from, to] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
-                edges.push_back({std::min(from, to), std::max(from, to), from < to});
+            welded.emplace_back(a, b, c);
             const glm::dvec3 p0(mesh.positions[tri.x]), p1(mesh.positions[tri.y]), p2(mesh.positions[tri.z]);
             sixTimesVolume += glm::dot(p0, glm::cross(p1, p2));
         }
     }
-    if (edges.empty() || !everyEdgeUsedOnceEachWay(edges, welder.count())) return MeshClosure::Open;
+    if (welded.empty() || !everyEdgeUsedOnceEachWay(welded, welder.count())) return MeshClosure::Open;
     if (sixTimesVolume > 0.0) return MeshClosure::Outward;
     if (sixTimesVolume < 0.0) return MeshClosure::Inward;
     return MeshClosure::Open;

@@ -27,6 +27,9 @@ struct MeshPart {
     std::vector<glm::vec3> colors;    ///< empty, or one linear RGB colour per position, 0..1
     std::vector<glm::uvec3> triangles;
     int material = -1;                ///< index into MeshFileData::materials, -1 = default
+    /// Parts of one OBJ group split by material bound one solid together (TriangleMesh::sourceNode);
+    /// -1: the part stands alone.
+    int group = -1;
 };
 
 struct MeshFileData {

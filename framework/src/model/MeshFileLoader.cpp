@@ -1,13 +1,16 @@
 #include <mvcl/model/MeshFileLoader.h>
 
 #include "MeshFileData_p.h"
+#include "MeshFileMemoryEstimate_p.h"
 
 #include <mvcl/model/MeshClosure.h>
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <limits>
+#include <memory>
 
 namespace mvcl {
 
@@ -53,25 +56,26 @@ Scene assemble(MeshFileData data, const std::string &name, const std::string &st
         TriangleMesh mesh;
         mesh.name = part.name.empty() ? stem : part.name;
         mesh.nodeName = mesh.name;
-        std::vector<glm::dvec3> &points = world.emplace_back();
-        points.reserve(part.positions.size());
-        for (const glm::dvec3 &p : part.positions) {
-            points.push_back(frame.apply(p));
-            lo = glm::min(lo, points.back());
-            hi = glm::max(hi, points.back());
+        if (part.group >= 0) { // one OBJ group in several materials is still one solid (closure, inference)
+            mesh.sourceNode = part.group;
+            mesh.sourceMesh = 0;
         }
-        mesh.indices.reserve(part.triangles.size());
-        for (const glm::uvec3 &t : part.triangles) {
+        // In place, without copies: a million-triangle file's parts are tens of megabytes.
+        std::vector<glm::dvec3> &points = part.positions;
+        for (glm::dvec3 &p : points) {
+            p = frame.apply(p);
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+        const auto degenerate = [&points](const glm::uvec3 &t) {
             const glm::dvec3 cr = glm::cross(points[t.y] - points[t.x], points[t.z] - points[t.x]);
-            if (t.x == t.y || t.y == t.z || t.x == t.z || (cr.x == 0.0 && cr.y == 0.0 && cr.z == 0.0))
-                ++scene.report.degenerateTrianglesDropped;
-            else
-                mesh.indices.push_back(t);
-        }
-        if (mesh.indices.empty()) {
-            world.pop_back();
-            continue;
-        }
+            return t.x == t.y || t.y == t.z || t.x == t.z || (cr.x == 0.0 && cr.y == 0.0 && cr.z == 0.0);
+        };
+        const std::size_t dropped = std::erase_if(part.triangles, degenerate);
+        scene.report.degenerateTrianglesDropped += dropped;
+        if (part.triangles.empty()) continue;
+        mesh.indices = std::move(part.triangles);
+        world.push_back(std::move(part.positions));
         if (!part.normals.empty()) {
             mesh.normals.reserve(part.normals.size());
             for (const glm::dvec3 &n : part.normals) {
@@ -142,6 +146,25 @@ Scene read(const meshfile::ReadInput &input, MeshFormat format, const std::strin
     return assemble(std::move(data), input.name, stem, options);
 }
 
+/// Refuses a file whose geometry the memory budget cannot hold (MeshFileMemoryEstimate_p.h).
+/// `bytes` is the file's beginning, or all of it when `complete`. True when it could tell.
+bool checkMemoryBudget(std::span<const std::uint8_t> bytes, std::uint64_t fileSize, bool complete,
+                       MeshFormat format, const MeshFileOptions &options, const std::string &name) {
+    if (options.maxGeometryBytes == 0) return true;
+    try {
+        if (const auto estimate = meshfile::estimateFromHeader(bytes, fileSize, format)) {
+            detail::refuseOverBudget(*estimate, options.maxGeometryBytes);
+            return true;
+        }
+        if (!complete) return false;
+        detail::refuseOverBudget(meshfile::estimateFromText(bytes, format, options.maxGeometryBytes),
+                                 options.maxGeometryBytes);
+        return true;
+    } catch (const Error &e) {
+        throw Error(name, e.problem());
+    }
+}
+
 } // namespace
 
 Scene loadMeshFile(const std::filesystem::path &path, MeshFormat format, const MeshFileOptions &options) {
@@ -152,10 +175,23 @@ Scene loadMeshFile(const std::filesystem::path &path, MeshFormat format, const M
     if (size > options.maxFileBytes)
         throw Error(name, "the file has " + std::to_string(size) + " bytes, more than the limit of " +
                               std::to_string(options.maxFileBytes));
-    std::vector<std::uint8_t> bytes(size);
     std::ifstream file(path, std::ios::binary);
-    if (!file.read(reinterpret_cast<char *>(bytes.data()), std::streamsize(size)))
+    bool budgetChecked = options.maxGeometryBytes == 0;
+    if (!budgetChecked) {
+        // A binary STL's or a PLY's header says what the file holds: refused before the rest
+        // of it is read.
+        std::vector<std::uint8_t> head(std::min<std::uintmax_t>(size, meshfile::kHeaderProbeBytes));
+        if (!file.read(reinterpret_cast<char *>(head.data()), std::streamsize(head.size())))
+            throw Error(name, "cannot read the file");
+        budgetChecked = checkMemoryBudget(head, size, head.size() == size, format, options, name);
+        file.seekg(0);
+    }
+    // Not zero-filled first: the read writes every byte (tens of megabytes for a large mesh).
+    const std::unique_ptr<std::uint8_t[]> storage(new std::uint8_t[size]);
+    const std::span<const std::uint8_t> bytes(storage.get(), size);
+    if (!file.read(reinterpret_cast<char *>(storage.get()), std::streamsize(size)))
         throw Error(name, "cannot read the file");
+    if (!budgetChecked) checkMemoryBudget(bytes, size, true, format, options, name);
     meshfile::ReadInput input{bytes, name, path.parent_path().empty() ? "." : path.parent_path(),
                               {options.maxTriangles}};
     return read(input, format, path.stem().string(), options);
@@ -164,6 +200,7 @@ Scene loadMeshFile(const std::filesystem::path &path, MeshFormat format, const M
 Scene loadMeshFileFromMemory(std::span<const std::uint8_t> bytes, const std::string &name, MeshFormat format,
                              const MeshFileOptions &options) {
     if (bytes.size() > options.maxFileBytes) throw Error(name, "the file is larger than the limit");
+    checkMemoryBudget(bytes, bytes.size(), true, format, options, name);
     meshfile::ReadInput input{bytes, name, {}, {options.maxTriangles}};
     return read(input, format, std::filesystem::path(name).stem().string(), options);
 }

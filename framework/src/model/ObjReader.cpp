@@ -1,9 +1,10 @@
 // Wavefront OBJ through tinyobjloader, which parses; everything it hands back is checked here:
 // tinyobjloader keeps indices it cannot resolve, and reads a number it cannot parse ("nan",
-// "1e999", "x") as 0, so the numbers of v, vn and vt lines are checked before it runs. Each
-// group or object ("g", "o") becomes one part per material, named after it; MTL colours become
-// materials. Polygons are split into fans here, not by tinyobjloader, so that nothing reads a
-// vertex before its index is checked.
+// "1e999", "x") as 0, so the numbers of v, vn and vt lines are checked before it runs. Files
+// without vertex colours are parsed through its callback interface, straight into mvcl's
+// arrays. Each group or object ("g", "o") becomes one part per material, named after it; MTL
+// colours become materials. Polygons are split into fans here, not by tinyobjloader, so that
+// nothing reads a vertex before its index is checked.
 
 #include "MeshFileData_p.h"
 
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <istream>
 #include <map>
@@ -59,6 +61,10 @@ public:
         }
         std::ifstream stream(path, std::ios::binary);
         tinyobj::LoadMtl(names, materials, &stream, warn, err);
+        if (materials->empty()) { // and LoadObjWithCallback would index its first material
+            m_warnings.push_back("material library '" + library + "' holds no materials; default materials used");
+            return false;
+        }
         return true;
     }
 
@@ -67,30 +73,74 @@ private:
     std::vector<std::string> &m_warnings;
 };
 
+/// Whether `word` is a decimal number that is certainly finite as a double: [+-]digits[.digits]
+/// with an exponent of at most two digits and at most 200 digits in all. Anything else (other
+/// spellings, huge exponents, "nan", "inf") goes to std::from_chars for the exact verdict; this is
+/// only the fast path of the check that runs over every v, vn and vt line.
+bool isPlainFiniteNumber(std::string_view word) {
+    std::size_t i = 0, digits = 0;
+    const std::size_t n = word.size();
+    if (i < n && (word[i] == '+' || word[i] == '-')) ++i;
+    while (i < n && word[i] >= '0' && word[i] <= '9') ++i, ++digits;
+    if (i < n && word[i] == '.') {
+        ++i;
+        while (i < n && word[i] >= '0' && word[i] <= '9') ++i, ++digits;
+    }
+    if (digits == 0 || digits > 200) return false;
+    if (i == n) return true;
+    if (word[i] != 'e' && word[i] != 'E') return false;
+    ++i;
+    if (i < n && (word[i] == '+' || word[i] == '-')) ++i;
+    const std::size_t exponentStart = i;
+    while (i < n && word[i] >= '0' && word[i] <= '9') ++i;
+    return i == n && i > exponentStart && i - exponentStart <= 2;
+}
+
+/// What the pass over the text found besides bad numbers.
+struct ObjTextSummary {
+    std::size_t vertices = 0, normals = 0; ///< `v` and `vn` lines, to reserve for them
+    std::size_t linesAndPoints = 0; ///< `l` and `p` lines, which are not ray traced
+    bool vertexColours = false;     ///< a `v` line with more than three numbers (colours, or w)
+};
+
 /// Every number on the v, vn and vt lines parses and is finite; fails naming the line otherwise.
-void checkVertexNumbers(const ReadInput &input) {
-    const std::string_view text(reinterpret_cast<const char *>(input.bytes.data()), input.bytes.size());
+/// One pass over the bytes, a plain syntax check per number (std::from_chars only for what
+/// that does not settle): it runs before tinyobjloader over the whole file, so it must cost
+/// little beside tinyobjloader's own parse. It counts what the parse will hand over, too.
+ObjTextSummary scanObjText(const ReadInput &input) {
+    ObjTextSummary summary;
+    const char *const begin = reinterpret_cast<const char *>(input.bytes.data());
+    const char *const end = begin + input.bytes.size();
+    const auto isBlank = [](char c) { return c == ' ' || c == '\t'; };
     std::size_t line = 0;
-    for (std::size_t pos = 0; pos < text.size();) {
+    for (const char *p = begin; p < end;) {
         ++line;
-        std::size_t end = text.find('\n', pos);
-        if (end == std::string_view::npos) end = text.size();
-        std::string_view l = text.substr(pos, end - pos);
-        pos = end + 1;
-        while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
-        if (l.size() < 2 || l[0] != 'v' || !(l[1] == ' ' || l[1] == '\t' || l[1] == 'n' || l[1] == 't')) continue;
-        std::size_t i = l.find_first_of(" \t");
-        if (i == std::string_view::npos) continue;
-        const std::string_view keyword = l.substr(0, i);
-        if (keyword != "v" && keyword != "vn" && keyword != "vt") continue;
-        while (i < l.size()) {
-            i = l.find_first_not_of(" \t\r", i);
-            if (i == std::string_view::npos || l[i] == '#') break;
-            std::size_t j = l.find_first_of(" \t\r", i);
-            if (j == std::string_view::npos) j = l.size();
-            std::string_view word = l.substr(i, j - i);
-            i = j;
-            std::string_view digits = word.starts_with('+') ? word.substr(1) : word;
+        const char *eol = static_cast<const char *>(std::memchr(p, '\n', std::size_t(end - p)));
+        if (!eol) eol = end;
+        const char *c = p;
+        p = eol + 1;
+        while (c < eol && isBlank(*c)) ++c;
+        if (eol - c < 2) continue;
+        if ((c[0] == 'l' || c[0] == 'p') && isBlank(c[1])) ++summary.linesAndPoints;
+        if (c[0] != 'v') continue;
+        std::string_view keyword;
+        if (isBlank(c[1])) keyword = "v";
+        else if ((c[1] == 'n' || c[1] == 't') && eol - c > 2 && isBlank(c[2])) keyword = c[1] == 'n' ? "vn" : "vt";
+        else continue;
+        c += keyword.size();
+        if (keyword == "v") ++summary.vertices;
+        if (keyword == "vn") ++summary.normals;
+        int numbers = 0;
+        for (;;) {
+            while (c < eol && (isBlank(*c) || *c == '\r')) ++c;
+            if (c == eol || *c == '#') break;
+            const char *wordEnd = c;
+            while (wordEnd < eol && !isBlank(*wordEnd) && *wordEnd != '\r') ++wordEnd;
+            const std::string_view word(c, std::size_t(wordEnd - c));
+            c = wordEnd;
+            if (keyword == "v" && ++numbers > 3) summary.vertexColours = true;
+            if (isPlainFiniteNumber(word)) continue;
+            const std::string_view digits = word.starts_with('+') ? word.substr(1) : word;
             double value = 0.0;
             const auto [stop, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
             if (ec == std::errc::result_out_of_range || (ec == std::errc() && stop == digits.data() + digits.size() && !std::isfinite(value)))
@@ -101,6 +151,7 @@ void checkVertexNumbers(const ReadInput &input) {
                                 std::string(word.substr(0, 40)) + "' is not a number");
         }
     }
+    return summary;
 }
 
 glm::vec3 colour(const tinyobj::real_t (&c)[3]) {
@@ -187,51 +238,159 @@ private:
     std::vector<std::uint32_t> m_number; ///< and the number it has there
 };
 
-} // namespace
+/// One group or object of the file as parsed: its faces' corners, corner counts and materials.
+struct ObjGroup {
+    std::string name;
+    std::vector<tinyobj::index_t> corners; ///< 0-based; normal_index -1 when a corner names none
+    std::vector<std::uint32_t> cornerCounts;
+    std::vector<int> materials; ///< per face; -1 = none or not in the library
+};
 
-MeshFileData readObj(const ReadInput &input) {
-    checkVertexNumbers(input);
-    MeshFileData data;
+struct ObjParse {
+    tinyobj::attrib_t attrib;
+    std::vector<ObjGroup> groups;
+    std::vector<tinyobj::material_t> materials;
+};
+
+/// tinyobjloader's messages: the first 8 lines are warnings.
+void keepWarnings(const std::string &warn, MeshFileData &data) {
+    std::istringstream lines(warn);
+    std::size_t count = 0;
+    for (std::string line; std::getline(lines, line);)
+        if (!line.empty() && count++ < 8) data.warnings.push_back(line);
+}
+
+/// Through tinyobj::LoadObj, which reads vertex colours (the callback interface does not).
+ObjParse parseWithLoadObj(const ReadInput &input, MeshFileData &data) {
     MemoryBuffer buffer(input.bytes);
     std::istream stream(&buffer);
     FolderMaterialReader materialReader(input.directory, data.warnings);
-    tinyobj::attrib_t attrib;
+    ObjParse parse;
     std::vector<tinyobj::shape_t> shapes;
-    std::vector<tinyobj::material_t> materials;
     std::string warn, err;
-    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &stream, &materialReader,
+    const bool ok = tinyobj::LoadObj(&parse.attrib, &shapes, &parse.materials, &warn, &err, &stream, &materialReader,
                                      /*triangulate=*/false, /*default_vcols_fallback=*/false);
     if (!ok) {
         std::string problem = err.empty() ? "not a valid OBJ file" : err;
-        problem = problem.substr(0, problem.find('\n'));
-        fail(input, problem);
+        fail(input, problem.substr(0, problem.find('\n')));
     }
-    if (!warn.empty()) {
-        std::istringstream lines(warn);
-        std::size_t count = 0;
-        for (std::string line; std::getline(lines, line);)
-            if (!line.empty() && count++ < 8) data.warnings.push_back(line);
+    keepWarnings(warn, data);
+    for (tinyobj::shape_t &shape : shapes) {
+        ObjGroup &group = parse.groups.emplace_back();
+        group.name = std::move(shape.name);
+        group.corners = std::move(shape.mesh.indices);
+        group.cornerCounts.assign(shape.mesh.num_face_vertices.begin(), shape.mesh.num_face_vertices.end());
+        group.materials = std::move(shape.mesh.material_ids);
     }
+    return parse;
+}
+
+/// Through tinyobj::LoadObjWithCallback, straight into ObjParse: the same parser of lines and
+/// numbers without LoadObj's own face and shape arrays, which take about half its time. The
+/// callbacks do what LoadObj does with them: `g` and `o` start a group (named after all of a
+/// `g` line's names, joined by spaces), `usemtl` sets the faces' material, indices are made
+/// 0-based (negative ones count back from the last vertex).
+ObjParse parseWithCallbacks(const ReadInput &input, const ObjTextSummary &summary, MeshFileData &data) {
+    struct State {
+        const ReadInput &input;
+        ObjParse parse;
+        int material = -1;
+        std::vector<std::string> &warnings;
+        ObjGroup &group() { return parse.groups.back(); }
+        void startGroup(std::string name) {
+            if (!group().cornerCounts.empty()) parse.groups.emplace_back();
+            group().name = std::move(name);
+        }
+    } state{input, {}, -1, data.warnings};
+    state.parse.attrib.vertices.reserve(3 * summary.vertices);
+    state.parse.attrib.normals.reserve(3 * summary.normals);
+    state.parse.groups.emplace_back();
+
+    tinyobj::callback_t callbacks;
+    callbacks.vertex_cb = [](void *user, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t z, tinyobj::real_t) {
+        std::vector<tinyobj::real_t> &v = static_cast<State *>(user)->parse.attrib.vertices;
+        v.insert(v.end(), {x, y, z});
+    };
+    callbacks.normal_cb = [](void *user, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t z) {
+        std::vector<tinyobj::real_t> &n = static_cast<State *>(user)->parse.attrib.normals;
+        n.insert(n.end(), {x, y, z});
+    };
+    callbacks.index_cb = [](void *user, tinyobj::index_t *indices, int count) {
+        State &st = *static_cast<State *>(user);
+        ObjGroup &group = st.group();
+        const auto vertices = int(st.parse.attrib.vertices.size() / 3);
+        const auto normals = int(st.parse.attrib.normals.size() / 3);
+        for (int i = 0; i < count; ++i) {
+            tinyobj::index_t corner = indices[i];
+            if (corner.vertex_index == 0) fail(st.input, "a face has vertex index 0 (OBJ counts from 1)");
+            corner.vertex_index = corner.vertex_index > 0 ? corner.vertex_index - 1 : vertices + corner.vertex_index;
+            corner.normal_index = corner.normal_index > 0   ? corner.normal_index - 1
+                                  : corner.normal_index < 0 ? normals + corner.normal_index
+                                                            : -1;
+            corner.texcoord_index = -1; // texture coordinates are not read
+            group.corners.push_back(corner);
+        }
+        group.cornerCounts.push_back(std::uint32_t(count));
+        group.materials.push_back(st.material);
+    };
+    callbacks.usemtl_cb = [](void *user, const char *name, int material) {
+        State &st = *static_cast<State *>(user);
+        st.material = material;
+        if (material < 0 && st.warnings.size() < 8)
+            st.warnings.push_back("material [ '" + std::string(name) + "' ] not found in .mtl");
+    };
+    callbacks.mtllib_cb = [](void *user, const tinyobj::material_t *materials, int count) {
+        static_cast<State *>(user)->parse.materials.assign(materials, materials + count);
+    };
+    callbacks.group_cb = [](void *user, const char **names, int count) {
+        std::string name;
+        for (int i = 0; i < count; ++i) {
+            if (i > 0) name += ' ';
+            name += names[i];
+        }
+        static_cast<State *>(user)->startGroup(std::move(name));
+    };
+    callbacks.object_cb = [](void *user, const char *name) { static_cast<State *>(user)->startGroup(name); };
+
+    MemoryBuffer buffer(input.bytes);
+    std::istream stream(&buffer);
+    FolderMaterialReader materialReader(input.directory, data.warnings);
+    std::string warn, err;
+    if (!tinyobj::LoadObjWithCallback(stream, callbacks, &state, &materialReader, &warn, &err)) {
+        std::string problem = err.empty() ? "not a valid OBJ file" : err;
+        fail(input, problem.substr(0, problem.find('\n')));
+    }
+    keepWarnings(warn, data);
+    if (state.group().cornerCounts.empty()) state.parse.groups.pop_back();
+    return std::move(state.parse);
+}
+
+} // namespace
+
+MeshFileData readObj(const ReadInput &input) {
+    const ObjTextSummary summary = scanObjText(input);
+    MeshFileData data;
+    ObjParse parse = summary.vertexColours ? parseWithLoadObj(input, data) : parseWithCallbacks(input, summary, data);
+    const tinyobj::attrib_t &attrib = parse.attrib;
+    const std::vector<tinyobj::material_t> &materials = parse.materials;
     for (const tinyobj::material_t &m : materials) data.materials.push_back(materialOf(m));
 
     const bool hasColors = !attrib.colors.empty() && attrib.colors.size() == attrib.vertices.size();
     PartBuilder builder(input, attrib, hasColors);
-    std::size_t triangles = 0, skippedFaces = 0, otherPrimitives = 0;
-    for (const tinyobj::shape_t &shape : shapes) {
-        const tinyobj::mesh_t &mesh = shape.mesh;
-        otherPrimitives += shape.lines.num_line_vertices.size() + shape.points.indices.size();
+    std::size_t triangles = 0, skippedFaces = 0;
+    for (const ObjGroup &shape : parse.groups) {
         // A part has per-vertex normals only when every corner of it names one.
-        const bool withNormals = !mesh.indices.empty() && !attrib.normals.empty() &&
-                                 std::all_of(mesh.indices.begin(), mesh.indices.end(),
+        const bool withNormals = !shape.corners.empty() && !attrib.normals.empty() &&
+                                 std::all_of(shape.corners.begin(), shape.corners.end(),
                                              [](const tinyobj::index_t &i) { return i.normal_index >= 0; });
         std::map<int, std::size_t> partOfMaterial;
         std::vector<std::unordered_map<std::uint64_t, std::uint32_t>> numbers;
         const std::size_t firstPart = data.parts.size();
         std::size_t offset = 0;
-        for (std::size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
-            const std::size_t n = mesh.num_face_vertices[f];
-            if (offset + n > mesh.indices.size()) fail(input, "'" + shape.name + "': face " + std::to_string(f) + " is cut short");
-            const int materialId = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
+        for (std::size_t f = 0; f < shape.cornerCounts.size(); ++f) {
+            const std::size_t n = shape.cornerCounts[f];
+            if (offset + n > shape.corners.size()) fail(input, "'" + shape.name + "': face " + std::to_string(f) + " is cut short");
+            const int materialId = f < shape.materials.size() ? shape.materials[f] : -1;
             const int material = materialId >= 0 && std::size_t(materialId) < materials.size() ? materialId : -1;
             if (n < 3) {
                 ++skippedFaces;
@@ -243,14 +402,15 @@ MeshFileData readObj(const ReadInput &input) {
                 MeshPart &part = data.parts.emplace_back();
                 part.name = shape.name;
                 part.material = material;
+                part.group = int(&shape - parse.groups.data());
                 numbers.emplace_back();
             }
             MeshPart &part = data.parts[it->second];
             auto &partNumbers = numbers[it->second - firstPart];
-            const std::uint32_t first = builder.vertex(part, it->second, partNumbers, mesh.indices[offset], withNormals);
-            std::uint32_t previous = builder.vertex(part, it->second, partNumbers, mesh.indices[offset + 1], withNormals);
+            const std::uint32_t first = builder.vertex(part, it->second, partNumbers, shape.corners[offset], withNormals);
+            std::uint32_t previous = builder.vertex(part, it->second, partNumbers, shape.corners[offset + 1], withNormals);
             for (std::size_t k = 2; k < n; ++k) {
-                const std::uint32_t next = builder.vertex(part, it->second, partNumbers, mesh.indices[offset + k], withNormals);
+                const std::uint32_t next = builder.vertex(part, it->second, partNumbers, shape.corners[offset + k], withNormals);
                 checkTriangleCount(input, ++triangles);
                 part.triangles.emplace_back(first, previous, next);
                 previous = next;
@@ -259,7 +419,7 @@ MeshFileData readObj(const ReadInput &input) {
         }
     }
     if (skippedFaces) data.warnings.push_back(std::to_string(skippedFaces) + " faces with fewer than 3 corners skipped");
-    if (otherPrimitives) data.warnings.push_back("lines and points are skipped (only triangles are ray traced)");
+    if (summary.linesAndPoints) data.warnings.push_back("lines and points are skipped (only triangles are ray traced)");
     if (triangles == 0) fail(input, "the OBJ file holds no faces");
     return data;
 }

@@ -4,7 +4,8 @@
 /// window system. A Controller owns the view's RenderSession, the camera, the lens stack, the
 /// visible layers and the selected lens, and shares the scene and tracer: a Controller made on
 /// its own has them to itself, the views of a Document (Document.h) share the document's. Every
-/// edit goes to the RenderSession at once, is one undo step, and is copied to a recovery file;
+/// edit goes to the RenderSession at once, is one undo step, and reaches a recovery file within
+/// a few seconds (RecoveryWriter);
 /// in a document the history, the files and opening scenes are the document's (undo(),
 /// saveSession(), openScene(), ... act on it), and links copy edits to other views.
 ///
@@ -72,6 +73,7 @@
 
 #include <glm/vec2.hpp>
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -156,9 +158,32 @@ public:
     /// Empty until a session is loaded or saved.
     const std::filesystem::path &sessionPath() const;
     /// Where the recovery copy goes: the path given here, else "<session>.recovery.json" beside
-    /// the session file, else nowhere. It is rewritten (atomically) after every edit step.
+    /// the session file, else nowhere. Every change of the state, drag moves included, goes to a
+    /// RecoveryWriter: written atomically at most once per recoveryInterval(), the last change
+    /// by updateRecovery() once the interval has passed. Saving the session removes the copy.
     void setRecoveryPath(const std::filesystem::path &file);
     std::filesystem::path recoveryPath() const;
+    /// Least time between two writes of the recovery copy (RecoveryWriter::kDefaultInterval, 2 s);
+    /// zero writes after every step.
+    void setRecoveryInterval(std::chrono::milliseconds interval);
+    std::chrono::milliseconds recoveryInterval() const;
+    /// Once a frame: changes since the last call (drag moves) and a pending write that is due
+    /// go to the recovery copy.
+    void updateRecovery();
+    /// At a clean exit: unsaved changes are written to the recovery copy now (the next start
+    /// offers them); with none, the copy is removed.
+    void finishRecovery();
+    /// The state changed since the session was opened, loaded or saved.
+    bool hasUnsavedChanges() const;
+    /// A recovery copy newer than the session file, or of a session never saved: the last run
+    /// ended with unsaved changes. Meant for the start, before any edit.
+    bool hasRecovery() const;
+    /// Loads the recovery copy as loadSession() does, but the session path and the recovery
+    /// path stay as they were; the restored state is unsaved (the copy keeps it until the
+    /// session is saved). Throws mvcl::Error for a broken copy and changes nothing.
+    void restoreRecovery();
+    /// Removes the recovery copy.
+    void discardRecovery();
     /// "stack.json" → "stack.recovery.json".
     static std::filesystem::path defaultRecoveryPath(const std::filesystem::path &sessionFile);
 
@@ -192,6 +217,14 @@ public:
     LayerVisibility layerVisibility(int layer) const;
     /// Bit i set: layer i is visible to primary rays outside every lens.
     uint32_t visibleLayers() const;
+    /// Renames a layer of the scene in this view: one undo step, shown by layerName() (the
+    /// scene itself, shared, keeps its names), saved in the session ("layerNames") and over
+    /// every other source of names (rules, files, meshes). An
+    /// empty name gives the layer back its name from the scene. Throws mvcl::Error for a layer
+    /// the scene does not have or a name with a line break, and changes nothing.
+    void setLayerName(int layer, const std::string &name);
+    /// The layer's name as shown (empty for a layer the scene does not have).
+    std::string layerName(int layer) const;
     void setVisibleLayers(uint32_t mask);
     /// The policy of pixels outside every lens, as given to the RenderSession.
     RayPolicy basePolicy() const;

@@ -66,6 +66,10 @@ struct MVCL_EXPORT ViewSetup {
     /// The same scene as `other` would load: the same files (two names of one file count as
     /// one), layer rules and contact tolerance. Loading a session keeps the scene then.
     bool loadsSameScene(const ViewSetup &other) const;
+    /// Gives `scene`'s layers the session's names ("layerNames") over their own; names of
+    /// layers the scene does not have are left out. Only names change: a tracer of the scene
+    /// stays valid.
+    void renameLayers(Scene &scene) const;
 
     /// The field of view a framed view uses when nobody gives one.
     static constexpr float kDefaultVerticalFovDegrees = 40.f;

@@ -30,6 +30,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -65,6 +66,8 @@ struct LensStackDescription {
     /// The memory budget of the scene's model ("memoryBudgetMiB": whole MiB ≥ 1; bytes here,
     /// 0 = none given: SceneLoadOptions::memoryBudgetBytes's default).
     std::uint64_t memoryBudgetBytes = 0;
+    /// Layers the user renamed ("layerNames": {"2": "bone"}), over every other source of names.
+    std::map<int, std::string> layerNames;
     LensStack lenses; ///< every lens committed
 };
 

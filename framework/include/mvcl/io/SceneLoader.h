@@ -51,7 +51,8 @@ struct SceneLoadOptions {
     std::optional<UpAxis> upAxis;
     std::optional<LengthUnit> unit;
     /// A model whose geometry would need more memory than this (bytes; meshes and BVH, estimated
-    /// before loading: GltfLoadOptions::maxGeometryBytes) is refused with the estimate.
+    /// before loading: GltfLoadOptions::maxGeometryBytes, MeshFileOptions::maxGeometryBytes) is
+    /// refused with the estimate.
     /// 0 = defaultMemoryBudgetBytes().
     std::uint64_t memoryBudgetBytes = 0;
 };

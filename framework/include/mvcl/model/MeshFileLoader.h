@@ -42,6 +42,11 @@ struct MeshFileOptions {
     std::uint64_t maxFileBytes = 1ull << 31;
     /// Files with more triangles than this are rejected (after polygons are split).
     std::size_t maxTriangles = std::size_t(1) << 27;
+    /// A file whose geometry would need more memory than this (meshes, the tracer's BVH and
+    /// what loading holds at its peak; estimated from a binary STL's or a PLY's header before
+    /// the rest of the file is read, from the text of an OBJ or ASCII STL) is refused with the
+    /// estimate in the error. 0 = no limit.
+    std::uint64_t maxGeometryBytes = 0;
 };
 
 /// Loads an OBJ, STL or PLY file as `format`. Meshes get their layer from the rules; the rest

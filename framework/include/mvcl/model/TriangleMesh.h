@@ -47,8 +47,11 @@ struct TriangleMesh {
     float layerConfidence = 1.f;
     /// Whether the mesh bounds a solid (see recordMeshClosure): clip volumes cap closed meshes.
     MeshClosure closure = MeshClosure::Open;
-    int sourceNode = -1; ///< glTF node index, -1 for built-in geometry
-    int sourceMesh = -1; ///< glTF mesh index, -1 for built-in geometry
+    /// glTF node and mesh index; an OBJ group's index and 0 (its meshes, one per material, bound
+    /// one solid); -1 for built-in geometry and STL and PLY meshes. Meshes with the same pair
+    /// form one solid (closure, layer inference), within one file.
+    int sourceNode = -1;
+    int sourceMesh = -1;
 };
 
 } // namespace mvcl

@@ -56,7 +56,7 @@ struct PickResult {
     std::string objectName;
     std::string meshName; ///< glTF mesh name; empty for spheres, planes and built-in meshes
     std::string nodeName; ///< glTF node name as written; empty when the node has none
-    int sourceNode = -1;  ///< glTF node index; -1 for built-in geometry
+    int sourceNode = -1;  ///< the mesh's TriangleMesh::sourceNode (glTF node index, OBJ group)
     int sourceMesh = -1;  ///< glTF mesh index; -1 for built-in geometry
     uint32_t material = 0; ///< index into Scene::materials
     std::string materialName;
