@@ -11,6 +11,7 @@
 #include <mvcl/core/WorkerPool.h>
 #include <mvcl/io/AnimationFile.h>
 #include <mvcl/io/LensStackFile.h>
+#include <mvcl/io/LoadedScene.h>
 #include <mvcl/io/SceneLoader.h>
 #include <mvcl/lens/LensRegistry.h>
 #include <mvcl/tracer/LayerContactProbe.h>
@@ -22,7 +23,6 @@
 #include <mvcl/view/RenderSession.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -304,17 +304,16 @@ int run(const RenderCommandLine &cl) {
     const std::optional<Animation> animation =
         isAnimation(cl) ? std::optional<Animation>(commandLineAnimation(cl, lenses)) : std::nullopt;
 
-    const auto loadStart = std::chrono::steady_clock::now();
-    const Scene scene = loadScene(setup.sources(), setup.loadOptions);
-    const double loadMilliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count();
     if (cl.info) {
+        const Scene scene = loadScene(setup.sources(), setup.loadOptions);
         printInfo(scene);
         printLayerContacts(scene);
         return kExitOk;
     }
-
-    const Tracer tracer(scene);
+    // One BVH for layer inference and rendering.
+    const LoadedScene loaded = LoadedScene::load(setup.sources(), setup.loadOptions);
+    const Scene &scene = *loaded.scene;
+    const Tracer &tracer = *loaded.tracer;
     const TracerBuildStats &build = tracer.buildStats();
     const Camera camera = setup.camera(scene, request, float(cl.width) / float(cl.height));
     try {
@@ -382,8 +381,9 @@ int run(const RenderCommandLine &cl) {
         layerNames += (layerNames.empty() ? "" : ", ") + std::to_string(layer.id) + " " + layer.name;
     std::printf("layers     %s\n", layerNames.c_str());
     printAssumptions(scene);
-    std::printf("load       %.1f ms: %.1f ms reading and checking, %.1f ms layer inference\n", loadMilliseconds,
-                loadMilliseconds - scene.report.inferenceMilliseconds, scene.report.inferenceMilliseconds);
+    std::printf("load       %.1f ms: %.1f ms reading and checking, %.1f ms layer inference\n",
+                loaded.readMilliseconds + scene.report.inferenceMilliseconds, loaded.readMilliseconds,
+                scene.report.inferenceMilliseconds);
     // Traversal walks the wide tree; the depth is the binary tree's it was collapsed from (a few
     // primitives give one wide node over a binary tree several levels deep), so both are named.
     std::printf("bvh        %.1f ms build, %zu wide node%s over %zu leaves (binary tree depth %d), %.1f MiB\n",

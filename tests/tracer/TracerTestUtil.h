@@ -1,13 +1,21 @@
 #pragma once
-// Procedural geometry shared by the tracer tests.
+// Procedural geometry and comparisons shared by the tracer tests.
 
+#include <mvcl/model/Scene.h>
 #include <mvcl/model/TriangleMesh.h>
+#include <mvcl/tracer/Tracer.h>
+
+#include <gtest/gtest.h>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include <glm/vec3.hpp>
 
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <random>
 #include <vector>
 
 namespace mvcl::test {
@@ -59,6 +67,32 @@ inline TriangleMesh makeBoxMesh(const glm::vec3 &lo, const glm::vec3 &hi) {
         mesh.indices.push_back({q[0], q[2], q[3]});
     }
     return mesh;
+}
+
+/// `rays` random rays from outside a's scene bounds into them, every other one under layer
+/// mask 0b10, get the same closest hits from both tracers; at least a tenth of them hit.
+inline void expectSameClosestHits(const Tracer &a, const Tracer &b, int rays = 1000) {
+    const Bounds3f bounds = a.scene().bounds();
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> unit(0.f, 1.f);
+    int hits = 0;
+    for (int i = 0; i < rays; ++i) {
+        const glm::vec3 origin = bounds.min - (bounds.max - bounds.min);
+        const glm::vec3 target = glm::mix(bounds.min, bounds.max, glm::vec3(unit(rng), unit(rng), unit(rng)));
+        const Ray ray{origin, glm::normalize(target - origin)};
+        RayQuery query;
+        query.layerMask = i % 2 ? ~0u : 0b10u;
+        Hit ha, hb;
+        const bool fa = a.closestHit(ray, query, ha);
+        ASSERT_EQ(fa, b.closestHit(ray, query, hb));
+        if (!fa) continue;
+        ++hits;
+        EXPECT_EQ(ha.t, hb.t);
+        EXPECT_EQ(ha.geometry, hb.geometry);
+        EXPECT_EQ(ha.primitive, hb.primitive);
+        EXPECT_EQ(ha.layer, hb.layer);
+    }
+    EXPECT_GT(hits, rays / 10);
 }
 
 } // namespace mvcl::test

@@ -195,25 +195,38 @@ Scene mergeScenes(std::vector<Scene> parts, std::span<const std::string> sources
     return merged;
 }
 
+bool anyUnassigned(const Scene &scene) {
+    return std::any_of(scene.meshes.begin(), scene.meshes.end(),
+                       [](const TriangleMesh &m) { return m.layerSource == LayerSource::Unassigned; });
+}
+
+/// Every layer a mesh, sphere or plane is on has an entry in the layer table.
+void ensureLayers(Scene &scene) {
+    for (const TriangleMesh &m : scene.meshes) scene.layers.ensure(m.layer);
+    for (const Sphere &s : scene.spheres) scene.layers.ensure(s.layer);
+    for (const Plane &p : scene.planes) scene.layers.ensure(p.layer);
+}
+
+/// Names from the meshes' names (model files), then from the rules (which win).
+void nameLayers(Scene &scene, bool isModelFile, const SceneLoadOptions &options) {
+    if (isModelFile) nameLayersByMeshNames(scene);
+    options.layerRules.nameLayers(scene.layers);
+}
+
 /// What every scene gets once read: lights, inference, contact tolerance, layer table and names.
 Scene finish(Scene scene, bool isModelFile, const SceneLoadOptions &options) {
     if (isModelFile && scene.lights.empty() && options.defaultLights == DefaultLights::WhenTheFileHasNone)
         addDefaultLights(scene);
-    const bool anyUnassigned = std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const TriangleMesh &m) {
-        return m.layerSource == LayerSource::Unassigned;
-    });
-    if (anyUnassigned) {
+    const bool inferNow = options.inferenceTiming == LayerInferenceTiming::WhileLoading;
+    if (inferNow && anyUnassigned(scene)) {
         const auto start = std::chrono::steady_clock::now();
         inferLayersByContainment(scene, options.inference);
         scene.report.inferenceMilliseconds =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
     if (options.layerContact.isEnabled()) scene.layerContact = options.layerContact;
-    for (const TriangleMesh &m : scene.meshes) scene.layers.ensure(m.layer);
-    for (const Sphere &s : scene.spheres) scene.layers.ensure(s.layer);
-    for (const Plane &p : scene.planes) scene.layers.ensure(p.layer);
-    if (isModelFile) nameLayersByMeshNames(scene);
-    options.layerRules.nameLayers(scene.layers);
+    ensureLayers(scene);
+    if (inferNow) nameLayers(scene, isModelFile, options);
     if (scene.materials.empty()) {
         Material fallback;
         fallback.name = "default";
@@ -249,6 +262,22 @@ Scene loadScene(std::span<const std::string> sources, const SceneLoadOptions &op
     Scene merged = mergeScenes(std::move(parts), sources);
     recordMeshClosure(merged);
     return finish(std::move(merged), true, options);
+}
+
+bool finishLayers(Scene &scene, const Tracer &tracer, const SceneLoadOptions &options) {
+    std::vector<int> before;
+    for (const TriangleMesh &m : scene.meshes) before.push_back(m.layer);
+    if (anyUnassigned(scene)) {
+        const auto start = std::chrono::steady_clock::now();
+        inferLayersByContainment(scene, tracer, options.inference);
+        scene.report.inferenceMilliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+    ensureLayers(scene);
+    nameLayers(scene, !scene.name.starts_with(kBuiltinPrefix), options);
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i)
+        if (scene.meshes[i].layer != before[i]) return true;
+    return false;
 }
 
 std::string describeSources(std::span<const std::string> sources) {

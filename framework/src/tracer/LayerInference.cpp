@@ -1,5 +1,6 @@
 #include <mvcl/tracer/LayerInference.h>
 
+#include <mvcl/core/Error.h>
 #include <mvcl/core/FloatBits.h>
 #include <mvcl/core/WorkerPool.h>
 #include <mvcl/model/Scene.h>
@@ -8,7 +9,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
+#include <string>
 #include <vector>
 
 namespace mvcl {
@@ -111,7 +114,10 @@ std::vector<glm::vec3> samplePoints(const Scene &scene, const std::vector<uint32
 
 } // namespace
 
-LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInferenceSettings &settings) {
+namespace {
+
+/// Either public form: `given` is the caller's tracer, or null to build one when peeling needs it.
+LayerInferenceResult infer(Scene &scene, const Tracer *given, const LayerInferenceSettings &settings) {
     LayerInferenceResult result;
     const std::size_t meshCount = scene.meshes.size();
     bool anyUnassigned = false;
@@ -151,8 +157,10 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
         assigned[0] = firstLayer;
         confidence[0] = firstLayer == kMaxLayers - 1 ? 0.f : 1.f;
     } else {
-        // The tracer reads the scene; layers are written back only after it is gone.
-        const Tracer tracer(scene);
+        // The tracer reads the scene; layers are written back only after its last query.
+        std::optional<Tracer> own;
+        if (!given) own.emplace(scene);
+        const Tracer &tracer = given ? *given : *own;
         std::vector<char> active(meshCount, 0);
         std::vector<float> fraction(parts.size(), 0.f);
         PeelState state{&tracer, &partOf, &active};
@@ -224,6 +232,21 @@ LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInference
     }
     result.layerCount = int(layers.size());
     return result;
+}
+
+} // namespace
+
+LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInferenceSettings &settings) {
+    return infer(scene, nullptr, settings);
+}
+
+LayerInferenceResult inferLayersByContainment(Scene &scene, const Tracer &tracer,
+                                              const LayerInferenceSettings &settings) {
+    if (tracer.scene().meshes.size() != scene.meshes.size())
+        throw Error("layer inference", "the tracer was built over another scene (" +
+                                           std::to_string(tracer.scene().meshes.size()) + " meshes, not " +
+                                           std::to_string(scene.meshes.size()) + ")");
+    return infer(scene, &tracer, settings);
 }
 
 } // namespace mvcl

@@ -6,6 +6,7 @@
 #include "Bvh.h"
 #include "WideBvh.h"
 
+#include <mvcl/core/Error.h>
 #include <mvcl/core/WorkerPool.h>
 #include <mvcl/model/Scene.h>
 
@@ -17,6 +18,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <iterator>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -142,6 +145,90 @@ Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
                            4 * d->wide.blockCount * sizeof(detail::PrimInfo) +
                            d->planes.size() * sizeof(detail::PlaneRecord);
     d->stats.buildMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+namespace {
+
+/// Copies `count` elements of a tree array into new aligned memory.
+template <class T>
+std::unique_ptr<T[], detail::AlignedFree> copyArray(const std::unique_ptr<T[], detail::AlignedFree> &from,
+                                                   std::size_t count) {
+    std::unique_ptr<T[], detail::AlignedFree> to(static_cast<T *>(detail::allocateAligned(count * sizeof(T))));
+    if (count) std::memcpy(to.get(), from.get(), count * sizeof(T));
+    return to;
+}
+
+/// The layer masks of the subtree below child reference `ref`, written into its nodes from the
+/// leaves' (already relayered) layers; returns the subtree's mask.
+uint32_t refreshLayerMasks(detail::WideBvh &wide, uint32_t ref) {
+    using detail::WideLeaf;
+    if (WideLeaf::isLeaf(ref)) {
+        uint32_t mask = 0;
+        const std::size_t first = WideLeaf::firstBlock(ref);
+        for (std::size_t i = 4 * first; i < 4 * (first + WideLeaf::blockCount(ref)); ++i)
+            if (wide.info[i].kind != uint8_t(PrimKind::Empty)) mask |= 1u << wide.info[i].layer;
+        return mask;
+    }
+    detail::WideNode &node = wide.nodes[ref];
+    uint32_t mask = 0;
+    for (int lane = 0; lane < detail::kWidth; ++lane) {
+        if (node.layerMask[lane] == 0) continue; // an empty lane (a real child holds something)
+        node.layerMask[lane] = refreshLayerMasks(wide, node.child[lane]);
+        mask |= node.layerMask[lane];
+    }
+    return mask;
+}
+
+bool sameGeometryCounts(const Scene &a, const Scene &b) {
+    if (a.meshes.size() != b.meshes.size() || a.spheres.size() != b.spheres.size() ||
+        a.planes.size() != b.planes.size())
+        return false;
+    for (std::size_t m = 0; m < a.meshes.size(); ++m)
+        if (a.meshes[m].indices.size() != b.meshes[m].indices.size() ||
+            a.meshes[m].positions.size() != b.meshes[m].positions.size())
+            return false;
+    return true;
+}
+
+} // namespace
+
+Tracer::Tracer(const Scene &scene, const Tracer &sameGeometry)
+    : d(std::make_unique<Private>(scene, sameGeometry.d->settings)) {
+    const auto start = std::chrono::steady_clock::now();
+    const Private &from = *sameGeometry.d;
+    if (!sameGeometryCounts(scene, from.scene))
+        throw Error("tracer", "a tracer can take another's BVH only for the same geometry: the scenes differ in "
+                              "their meshes, spheres or planes");
+    detail::WideBvh &wide = d->wide;
+    wide.nodeCount = from.wide.nodeCount;
+    wide.blockCount = from.wide.blockCount;
+    wide.root = from.wide.root;
+    std::copy(std::begin(from.wide.rootBounds), std::end(from.wide.rootBounds), std::begin(wide.rootBounds));
+    wide.nodes = copyArray(from.wide.nodes, wide.nodeCount);
+    wide.blocks = copyArray(from.wide.blocks, wide.blockCount);
+    wide.info = copyArray(from.wide.info, 4 * wide.blockCount);
+    // The leaves take the new layers; then the nodes' masks follow from the leaves up.
+    parallelFor(wide.blockCount, 0, [&](std::size_t b) {
+        for (std::size_t lane = 0; lane < 4; ++lane) {
+            detail::PrimInfo &info = wide.info[4 * b + lane];
+            if (info.kind == uint8_t(PrimKind::Triangle)) {
+                info.layer = clampLayer(scene.meshes[info.geometry].layer);
+                wide.blocks[b].triangleLayerBit[lane] = 1u << info.layer;
+            } else if (info.kind == uint8_t(PrimKind::Sphere)) {
+                info.layer = clampLayer(scene.spheres[info.geometry].layer);
+            }
+        }
+    });
+    wide.rootMask = wide.nodeCount + wide.blockCount ? refreshLayerMasks(wide, wide.root) : 0;
+    d->planes = from.planes;
+    for (detail::PlaneRecord &pl : d->planes) pl.layer = clampLayer(scene.planes[pl.geometry].layer);
+    d->layers = wide.rootMask;
+    for (const detail::PlaneRecord &pl : d->planes) d->layers |= 1u << pl.layer;
+    if (scene.layerContact.isEnabled()) d->contactDistance = scene.layerContact.sceneUnits(scene.bounds());
+    // What this tracer cost: the build it reuses and the copy.
+    d->stats = from.stats;
+    d->stats.buildMilliseconds +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 

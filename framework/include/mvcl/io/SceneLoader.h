@@ -28,9 +28,21 @@ enum class DefaultLights : uint8_t {
     Never,              ///< keep the file's lights as they are, none included (ambient only)
 };
 
+/// Who infers the layers of the meshes that no rule or file placed.
+enum class LayerInferenceTiming : uint8_t {
+    /// loadScene() does, with a BVH of its own: a second one is built for rendering.
+    WhileLoading,
+    /// loadScene() leaves them on layer 0 and the layers unnamed; the caller builds the scene's
+    /// tracer, calls finishLayers() with it and then moves the tracer onto the result
+    /// (Tracer(scene, tracer)): one BVH build per load, and an image can be shown before
+    /// inference ends (LoadedScene does all of it).
+    ByCaller,
+};
+
 struct SceneLoadOptions {
     LayerRules layerRules;
     LayerInferenceSettings inference;
+    LayerInferenceTiming inferenceTiming = LayerInferenceTiming::WhileLoading;
     DefaultLights defaultLights = DefaultLights::WhenTheFileHasNone;
     /// Becomes Scene::layerContact when enabled (model files carry none of their own).
     LayerContact layerContact;
@@ -55,6 +67,12 @@ MVCL_EXPORT Scene loadScene(std::string_view source, const SceneLoadOptions &opt
 /// rule names it. The files are placed in one world (their own coordinates, re-centred once).
 /// One source is the same as loadScene(source). Built-in scenes cannot be combined with files.
 MVCL_EXPORT Scene loadScene(std::span<const std::string> sources, const SceneLoadOptions &options = {});
+
+/// The second half of a load with LayerInferenceTiming::ByCaller: infers the layers of the
+/// meshes still unassigned with `tracer`, built over `scene` as loadScene() returned it (or over
+/// a copy that other threads keep querying), and names the layers. Returns whether a mesh moved
+/// to another layer: then `tracer` no longer matches and the scene needs Tracer(scene, tracer).
+MVCL_EXPORT bool finishLayers(Scene &scene, const Tracer &tracer, const SceneLoadOptions &options);
 
 /// The sources of a scene as text: the path itself for one, "a.stl + b.stl" for several.
 MVCL_EXPORT std::string describeSources(std::span<const std::string> sources);

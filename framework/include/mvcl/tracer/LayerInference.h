@@ -14,6 +14,7 @@
 namespace mvcl {
 
 struct Scene;
+class Tracer;
 
 struct LayerInferenceSettings {
     int samplesPerMesh = 64;        ///< triangle centroids sampled per mesh
@@ -34,6 +35,12 @@ struct LayerInferenceResult {
 
 /// Assigns a layer to every mesh with LayerSource::Unassigned (the others are kept as they are
 /// and act as occluders), and adds the layers to the scene's table.
+/// Builds its own tracer over the scene when there is more than one part to peel.
 MVCL_EXPORT LayerInferenceResult inferLayersByContainment(Scene &scene, const LayerInferenceSettings &settings = {});
+/// The same with a tracer the caller already has, built over a scene with the same geometry as
+/// `scene` (any layers): `scene` itself, or a copy of it that others keep querying while this
+/// one changes. With Tracer(scene, tracer) afterwards, a load builds one BVH instead of two.
+MVCL_EXPORT LayerInferenceResult inferLayersByContainment(Scene &scene, const Tracer &tracer,
+                                                          const LayerInferenceSettings &settings = {});
 
 } // namespace mvcl

@@ -36,7 +36,7 @@ struct TracerBuildStats {
     std::size_t nodes = 0;
     std::size_t leaves = 0;
     int maxDepth = 0;
-    double buildMilliseconds = 0.0;
+    double buildMilliseconds = 0.0; ///< with Tracer(scene, sameGeometry): that build plus the copy
     std::size_t memoryBytes = 0;
 };
 
@@ -44,6 +44,13 @@ class MVCL_EXPORT Tracer {
 public:
     /// Builds the acceleration structure. The scene must outlive the tracer and not change.
     explicit Tracer(const Scene &scene, const TracerSettings &settings = {});
+    /// A tracer over `scene` that reuses the BVH of `sameGeometry` instead of building one:
+    /// `scene` must hold the same geometry as the scene `sameGeometry` was built over (the same
+    /// meshes, spheres and planes) and may differ in their layers and in its layer contact.
+    /// Layer inference runs on a tracer of the scene as read and then moves meshes between
+    /// layers; this gives the tracer of the result in a copy of the arrays, not a second build.
+    /// Throws mvcl::Error("tracer", …) when the geometry visibly differs (other counts).
+    Tracer(const Scene &scene, const Tracer &sameGeometry);
     ~Tracer();
     Tracer(const Tracer &) = delete;
     Tracer &operator=(const Tracer &) = delete;

@@ -1,0 +1,74 @@
+#pragma once
+/// \file SceneLoadJob.h
+/// Opening a scene without blocking the caller: a thread of the job's own reads the files and
+/// builds the tracer, hands over the scene as read as soon as it can be rendered, then infers
+/// the layers on that same tracer and hands over the inferred scene with its tracer (the BVH
+/// copied onto the new layers, not built again). An app shows the first result at once, keeps
+/// drawing meanwhile, and swaps in the second when it comes.
+///
+/// A scene with nothing to infer (every mesh placed by a rule, a file or a built-in scene) gives
+/// one result only, already final. Results are shared: the session that renders one keeps it
+/// alive, and the job keeps the first while it infers on its tracer.
+
+#include <mvcl/core/Error.h>
+#include <mvcl/core/Export.h>
+#include <mvcl/io/SceneLoader.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mvcl {
+
+struct Scene;
+class Tracer;
+
+class MVCL_EXPORT SceneLoadJob {
+public:
+    enum class Stage {
+        Reading,         ///< reading and checking the files
+        BuildingBvh,     ///< building the tracer of the scene as read
+        InferringLayers, ///< the first result is out; inferring the layers on its tracer
+        Done,            ///< the final result is out (or was cancelled)
+        Failed,          ///< error() says why; no further result comes
+    };
+
+    struct Result {
+        std::shared_ptr<const Scene> scene;
+        std::shared_ptr<const Tracer> tracer; ///< built over *scene
+        /// False for the scene as read when its layers are still to be inferred (its meshes
+        /// wait on layer 0, its layers unnamed); true for the last result.
+        bool layersAreFinal = false;
+    };
+
+    /// Starts loading at once: loadScene(sources, options) with the inference left to the job
+    /// (options.inferenceTiming is ignored).
+    SceneLoadJob(std::vector<std::string> sources, SceneLoadOptions options);
+    /// Cancels and waits for the thread.
+    ~SceneLoadJob();
+    SceneLoadJob(const SceneLoadJob &) = delete;
+    SceneLoadJob &operator=(const SceneLoadJob &) = delete;
+
+    Stage stage() const;
+    /// A line for a progress display: "reading body.glb", "building the BVH of 394,551
+    /// triangles", "inferring layers", "done", or the error.
+    std::string progressText() const;
+    /// The newest result not yet taken, once: the first (layers not final) and then the last.
+    /// When the last is ready before the first was taken, only the last is handed out.
+    std::optional<Result> takeResult();
+    /// The error of a failed load (Stage::Failed), naming the file and the problem.
+    std::optional<Error> error() const;
+    /// Done or Failed: no further result will come.
+    bool isFinished() const;
+    /// Waits until the job is finished (tests, headless apps).
+    void wait();
+    /// Stops after the step in progress; no further result is handed out.
+    void cancel();
+
+private:
+    struct Private;
+    std::unique_ptr<Private> d;
+};
+
+} // namespace mvcl
