@@ -18,6 +18,10 @@ namespace mvcl::viewer {
 
 namespace {
 
+long long millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start).count();
+}
+
 /// The side panel's width in screen units, before the content scale.
 constexpr float kPanelWidth = 380.f;
 constexpr size_t kMessagesKept = 6;
@@ -128,9 +132,12 @@ void Viewer::update() {
         InputEvent drop = InputEvent::fileDrop(m_pointer, g_droppedPaths);
         g_droppedPaths.clear();
         stopHistogramWorker(); // a dropped file may replace the scene
+        m_openStart = Clock::now(); // dropped models open like startOpening()
+        m_openShowedScene = false;
         handle(drop);
     }
     runScript();
+    updateOpening();
     refocus();
     if (!m_recoveryOffered) m_controller->updateRecovery(); // the offered copy stays as it is until answered
     updatePlayback();
@@ -150,6 +157,10 @@ void Viewer::takeImage() {
         if (!session.copyImage(view.image, changed)) continue;
         view.texture.update(view.image, changed);
         if (!changed.isEmpty()) ++m_benchImageUpdates;
+        if (m_awaitingFirstImage && !changed.isEmpty()) {
+            m_awaitingFirstImage = false;
+            report("first image after " + std::to_string(millisecondsSince(m_openStart)) + " ms");
+        }
         view.current = idle && view.image.width() > 0;
     }
 }
@@ -262,15 +273,37 @@ void Viewer::saveSession(const std::string &file) {
 
 void Viewer::openFile(const std::string &file) {
     // A lens-stack file is a session; anything else is a model. Errors leave the view as it was.
+    if (!endsWith(file, ".json")) return startOpening({file});
     stopHistogramWorker();
     try {
-        if (endsWith(file, ".json")) m_controller->loadSession(file);
-        else m_controller->openScene(file);
+        m_controller->loadSession(file);
         report("opened " + file);
     } catch (const Error &e) {
         report(e.what());
     }
     refocus(); // a session may bring other views
+}
+
+void Viewer::startOpening(const std::vector<std::string> &files) {
+    m_openStart = Clock::now();
+    m_openShowedScene = false;
+    m_document->openScenes(files);
+}
+
+void Viewer::updateOpening() {
+    if (!m_document->isLoading()) return;
+    stopHistogramWorker(); // the tracer it reads is about to be replaced
+    if (!m_document->updateSceneLoad()) return;
+    const std::string after = " after " + std::to_string(millisecondsSince(m_openStart)) + " ms";
+    if (!m_openShowedScene) {
+        report("showing " + m_document->scene().name + after +
+               (m_document->isLoading() ? "; inferring its layers" : ""));
+        m_awaitingFirstImage = true;
+        m_openShowedScene = true;
+    } else {
+        report("layers of " + m_document->scene().name + " inferred" + after);
+    }
+    refocus();
 }
 
 void Viewer::frameDrawn() {

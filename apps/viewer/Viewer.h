@@ -56,6 +56,10 @@ private:
     // Viewer.cpp
     void layout();
     void takeImage();
+    /// Starts opening model files (the document loads them on a thread of its own).
+    void startOpening(const std::vector<std::string> &files);
+    /// Installs what the open in progress has ready and says how long it took.
+    void updateOpening();
     void forwardInput();
     void handleViewerKeys();
     /// An event at the focused view's framebuffer pixels (the script's), to the document.
@@ -195,9 +199,16 @@ private:
     std::optional<ViewRecorder> m_recorder; ///< while recording
     Clock::time_point m_recordStart;
 
+    // Opening files without blocking (Document::openScenes): when the open started, and
+    // whether the new scene's first image is still to be reported.
+    Clock::time_point m_openStart;
+    bool m_openShowedScene = false; ///< the open in progress has put its scene on screen
+    bool m_awaitingFirstImage = false;
+
     // Script replay.
     std::optional<ViewerScript> m_script;
     int m_waitFrames = 0;
+    bool m_scriptOpenStarted = false; ///< `open` runs until the load is done
     int m_dragStep = -1;
     std::string m_benchName;
     std::vector<double> m_benchFrames;

@@ -9,6 +9,8 @@
 #include <imgui.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace mvcl::viewer {
 
@@ -164,11 +166,14 @@ void Viewer::drawHelpOverlay() {
 }
 
 void Viewer::drawMessages() {
-    if (m_messages.empty()) return;
+    // The open in progress says what it does below the messages, while the old scene stays live.
+    std::vector<std::string> lines(m_messages.begin(), m_messages.end());
+    if (m_document && m_document->isLoading()) lines.push_back(m_document->loadProgress() + " ...");
+    if (lines.empty()) return;
     const float lineHeight = ImGui::GetTextLineHeightWithSpacing();
     ImDrawList *draw = ImGui::GetForegroundDrawList();
-    float y = m_viewScreenSize.y - lineHeight * float(m_messages.size()) - 6.f;
-    for (const std::string &message : m_messages) {
+    float y = m_viewScreenSize.y - lineHeight * float(lines.size()) - 6.f;
+    for (const std::string &message : lines) {
         draw->AddRectFilled(ImVec2(4.f, y - 1.f), ImVec2(8.f + ImGui::CalcTextSize(message.c_str()).x, y + lineHeight - 2.f),
                             IM_COL32(0, 0, 0, 170));
         draw->AddText(ImVec2(6.f, y), IM_COL32(255, 230, 160, 255), message.c_str());

@@ -146,8 +146,14 @@ bool Viewer::runCommand(const ScriptCommand &c) {
         m_controller->loadSession(c.word(0));
         refocus();
     } else if (name == "open") {
-        stopHistogramWorker();
-        m_controller->openScenes(c.args); // several models: the layers of one scene
+        // Several models: the layers of one scene. The script waits, frame after frame, until
+        // the scene and its inferred layers are in: what follows acts on them.
+        if (!m_scriptOpenStarted) {
+            startOpening(c.args);
+            m_scriptOpenStarted = true;
+        }
+        if (m_document->isLoading()) return false;
+        m_scriptOpenStarted = false;
     } else if (name == "expect-lenses") {
         if (m_controller->lensCount() != c.integer(0))
             fail("the stack holds " + std::to_string(m_controller->lensCount()) + " lenses, not " + c.word(0));

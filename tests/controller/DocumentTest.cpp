@@ -222,6 +222,7 @@ TEST_F(DocumentTest, LinksSurviveASessionRoundTripAndAModelReload) {
 
     // Reloading the model keeps the links working, both ways.
     reopened->openScenes({"builtin:cube-in-cube"});
+    reopened->finishSceneLoad();
     EXPECT_EQ(reopened->links(), document->links());
     reopened->view(0).orbit(-0.3f, 0.f);
     EXPECT_EQ(reopened->view(0).camera(), reopened->view(1).camera());

@@ -4,6 +4,7 @@
 #include "Controller_p.h"
 #include "Document_p.h"
 
+#include <mvcl/io/LoadedScene.h>
 #include <mvcl/io/SceneLoader.h>
 
 #include <algorithm>
@@ -209,8 +210,9 @@ Controller::Controller(const LensRegistry &registry, const ViewRequest &request,
     d->settings = settings;
     d->viewSize = {std::max(settings.width, 1), std::max(settings.height, 1)};
     ViewSetup setup = ViewSetup::prepare(request, registry);
-    auto scene = std::make_shared<const Scene>(loadScene(setup.sources(), setup.loadOptions));
-    auto tracer = std::make_shared<const Tracer>(*scene);
+    LoadedScene loaded = LoadedScene::load(setup.sources(), setup.loadOptions);
+    std::shared_ptr<const Scene> scene = std::move(loaded.scene);
+    std::shared_ptr<const Tracer> tracer = std::move(loaded.tracer);
     d->camera = setup.camera(*scene, request, float(d->viewSize.x) / float(d->viewSize.y));
     d->visibleLayers = setup.session.visibleLayers;
     d->stack = setup.session.lenses;
@@ -266,8 +268,9 @@ void Controller::openScenes(const std::vector<std::string> &sources, const Scene
     ViewRequest request;
     request.source = setup.source;
     request.moreSources = setup.moreSources;
-    auto scene = std::make_shared<const Scene>(loadScene(sources, options));
-    auto tracer = std::make_shared<const Tracer>(*scene);
+    LoadedScene loaded = LoadedScene::load(sources, options);
+    std::shared_ptr<const Scene> scene = std::move(loaded.scene);
+    std::shared_ptr<const Tracer> tracer = std::move(loaded.tracer);
     const Camera camera = setup.camera(*scene, request, coordinates().aspect());
     // Nothing below throws: the new scene is complete.
     d->setup = std::move(setup);
@@ -320,11 +323,12 @@ void Controller::loadSession(const std::filesystem::path &file) {
     std::shared_ptr<const Tracer> tracer;
     if (!sameScene) {
         try {
-            scene = std::make_shared<const Scene>(loadScene(setup.sources(), setup.loadOptions));
+            LoadedScene loaded = LoadedScene::load(setup.sources(), setup.loadOptions);
+            scene = std::move(loaded.scene);
+            tracer = std::move(loaded.tracer);
         } catch (const Error &e) { // the scene's own error, said to be the session file's scene
             throw Error(file.string(), "scene: " + std::string(e.what()));
         }
-        tracer = std::make_shared<const Tracer>(*scene);
     }
     const Camera camera = setup.camera(sameScene ? *d->scene : *scene, request, coordinates().aspect());
     // Nothing below throws: the file is read and its scene loaded.

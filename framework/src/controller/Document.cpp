@@ -2,6 +2,7 @@
 
 #include "Document_p.h"
 
+#include <mvcl/io/LoadedScene.h>
 #include <mvcl/io/SceneLoader.h>
 
 #include <algorithm>
@@ -240,8 +241,9 @@ Document::Document(const LensRegistry &registry, const ViewRequest &request, con
     d->settings = settings;
     const glm::ivec2 size(std::max(settings.width, 1), std::max(settings.height, 1));
     ViewSetup setup = ViewSetup::prepare(request, registry);
-    d->scene = std::make_shared<const Scene>(loadScene(setup.sources(), setup.loadOptions));
-    d->tracer = std::make_shared<const Tracer>(*d->scene);
+    LoadedScene loaded = LoadedScene::load(setup.sources(), setup.loadOptions);
+    d->scene = std::move(loaded.scene);
+    d->tracer = std::move(loaded.tracer);
     const std::optional<SessionDescription> file = std::move(setup.sessionFile);
     const int count = file ? int(file->views.size()) : 1;
     std::vector<Camera> cameras{setup.camera(*d->scene, request, aspectOf(size))};
@@ -487,11 +489,12 @@ void Document::loadSession(const std::filesystem::path &file) {
     std::shared_ptr<const Tracer> tracer = d->tracer;
     if (!keepScene) {
         try {
-            scene = std::make_shared<const Scene>(loadScene(setup.sources(), setup.loadOptions));
+            LoadedScene loaded = LoadedScene::load(setup.sources(), setup.loadOptions);
+            scene = std::move(loaded.scene);
+            tracer = std::move(loaded.tracer);
         } catch (const Error &e) { // the scene's own error, said to be the session file's scene
             throw Error(file.string(), "scene: " + std::string(e.what()));
         }
-        tracer = std::make_shared<const Tracer>(*scene);
     }
     const int count = int(sessionFile.views.size());
     std::vector<Camera> cameras;
@@ -543,38 +546,75 @@ void Document::loadSession(const std::filesystem::path &file) {
 
 void Document::openScenes(const std::vector<std::string> &sources, const SceneLoadOptions &options) {
     if (sources.empty()) return;
-    ViewSetup setup;
-    setup.source = sources.front();
-    setup.moreSources.assign(sources.begin() + 1, sources.end());
-    setup.loadOptions = options;
+    if (d->loadJob) {
+        d->loadJob->cancel();
+        d->cancelledLoads.push_back(std::move(d->loadJob));
+    }
+    d->loadSetup = ViewSetup{};
+    d->loadSetup.source = sources.front();
+    d->loadSetup.moreSources.assign(sources.begin() + 1, sources.end());
+    d->loadSetup.loadOptions = options;
+    d->loadShowedFirst = false;
+    d->loadJob = std::make_unique<SceneLoadJob>(sources, options);
+}
+
+bool Document::updateSceneLoad() {
+    std::erase_if(d->cancelledLoads, [](const std::unique_ptr<SceneLoadJob> &job) { return job->isFinished(); });
+    if (!d->loadJob) return false;
+    bool changed = false;
+    if (std::optional<SceneLoadJob::Result> result = d->loadJob->takeResult()) {
+        // The inferred layers of the scene on screen keep the views as the user left them.
+        const bool freshViews = !d->loadShowedFirst;
+        if (freshViews) d->setup = d->loadSetup;
+        d->installScene(result->scene, result->tracer, freshViews);
+        d->loadShowedFirst = true;
+        changed = true;
+    }
+    if (d->loadJob->isFinished() && !changed) {
+        const std::optional<Error> error = d->loadJob->error();
+        d->loadJob.reset();
+        if (error) d->report(*error);
+    }
+    return changed;
+}
+
+bool Document::isLoading() const { return d->loadJob != nullptr; }
+
+std::string Document::loadProgress() const { return d->loadJob ? d->loadJob->progressText() : std::string(); }
+
+void Document::finishSceneLoad() {
+    while (d->loadJob) {
+        d->loadJob->wait();
+        updateSceneLoad();
+    }
+}
+
+void Document::Private::installScene(std::shared_ptr<const Scene> newScene, std::shared_ptr<const Tracer> newTracer,
+                                     bool freshViews) {
     ViewRequest request;
     request.source = setup.source;
     request.moreSources = setup.moreSources;
-    auto scene = std::make_shared<const Scene>(loadScene(sources, options));
-    auto tracer = std::make_shared<const Tracer>(*scene);
-    std::vector<Camera> cameras;
-    for (const std::unique_ptr<Controller> &v : d->views)
-        cameras.push_back(setup.camera(*scene, request, aspectOf(v->viewSize())));
-    // Nothing below throws: the new scene is complete.
-    for (const std::unique_ptr<Controller> &v : d->views)
+    for (const std::unique_ptr<Controller> &v : views)
         if (v->isDragging()) v->d->cancelDrag();
-    d->setup = std::move(setup);
-    d->scene = scene;
-    d->tracer = tracer;
-    ++d->linksMuted;
-    for (int i = 0; i < viewCount(); ++i) {
-        Controller::Private &v = d->viewOf(i);
-        v.setup = d->setup;
-        v.camera = cameras[std::size_t(i)];
-        v.visibleLayers = kAllLayers;
+    scene = std::move(newScene);
+    tracer = std::move(newTracer);
+    ++linksMuted;
+    for (int i = 0; i < owner.viewCount(); ++i) {
+        Controller::Private &v = viewOf(i);
+        v.setup = setup;
+        if (freshViews) {
+            v.camera = setup.camera(*scene, request, aspectOf(v.viewSize));
+            v.visibleLayers = kAllLayers;
+        }
         v.replaceScene(scene, tracer);
     }
-    --d->linksMuted;
+    --linksMuted;
+    if (!freshViews) return;
     // The links hold on: linked views take the focused view's camera, lenses and layers again.
-    for (LinkAspect aspect : kAspects) d->viewChanged(focusedView(), aspect);
-    d->clearHistory();
-    d->writeRecovery();
-    d->viewsChanged();
+    for (LinkAspect aspect : kAspects) viewChanged(focus(), aspect);
+    clearHistory();
+    writeRecovery();
+    viewsChanged();
 }
 
 const std::filesystem::path &Document::sessionPath() const { return d->sessionPath; }

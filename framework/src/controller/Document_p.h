@@ -8,6 +8,7 @@
 
 #include <mvcl/controller/RecoveryWriter.h>
 #include <mvcl/controller/ViewSetup.h>
+#include <mvcl/io/SceneLoadJob.h>
 
 #include <filesystem>
 #include <functional>
@@ -56,6 +57,13 @@ struct Document::Private {
     /// > 0: changes of the views are not copied along the links (while the links themselves
     /// copy, and while undo or loading set every view).
     int linksMuted = 0;
+
+    /// The open in progress (openScenes) and the setup its scene comes with; earlier jobs
+    /// cancelled but still finishing their step, so that dropping them does not block the UI.
+    std::unique_ptr<SceneLoadJob> loadJob;
+    ViewSetup loadSetup;
+    bool loadShowedFirst = false; ///< the job's scene as read is installed; the next is the inferred one
+    std::vector<std::unique_ptr<SceneLoadJob>> cancelledLoads;
 
     std::filesystem::path sessionPath;
     std::filesystem::path explicitRecoveryPath;
@@ -107,6 +115,9 @@ struct Document::Private {
     void markSaved();
 
     // --- files ---
+    /// Puts a loaded scene in every view: as a new scene (fresh cameras, every layer visible,
+    /// links again, a new history) or, for the inferred layers of the scene shown, in place.
+    void installScene(std::shared_ptr<const Scene> scene, std::shared_ptr<const Tracer> tracer, bool freshViews);
     void writeRecovery() { passRecovery(true); }
     std::filesystem::path recoveryPath() const;
     void saveSession(const std::filesystem::path &file) { owner.saveSession(file); }

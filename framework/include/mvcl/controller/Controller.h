@@ -141,6 +141,8 @@ public:
     const SceneLoadOptions &sceneLoadOptions() const;
     /// Opens another scene with `options`: the lens stack stays, the camera is chosen afresh,
     /// every layer is visible again, and the history starts anew. On error nothing changes.
+    /// A view of a Document opens without blocking (Document::openScenes: the scene appears
+    /// with Document::updateSceneLoad()); a Controller of its own loads before it returns.
     void openScene(const std::string &source, const SceneLoadOptions &options = {});
     /// Opens several model files as the layers of one scene (loadScene(std::span)), as openScene.
     void openScenes(const std::vector<std::string> &sources, const SceneLoadOptions &options = {});

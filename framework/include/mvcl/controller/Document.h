@@ -122,9 +122,22 @@ public:
     /// with the file's, and starts a new history. A broken file throws mvcl::Error naming it
     /// and changes nothing.
     void loadSession(const std::filesystem::path &file);
-    /// Opens other model files (several as layers): each view gets a fresh camera and every
-    /// layer visible, keeps its lenses; links are applied again from the focused view.
+    /// Opens other model files (several as layers) without blocking: a SceneLoadJob reads them
+    /// and builds their tracer on a thread of its own while the views keep showing the current
+    /// scene, and updateSceneLoad() installs its results. With the scene as read each view gets
+    /// a fresh camera and every layer visible and keeps its lenses, links are applied again from
+    /// the focused view, and the history starts anew; when the inferred layers follow, the views
+    /// keep their cameras and lenses. A file that cannot be read goes to the error callback and
+    /// the current scene stays. Opening again while one is in progress drops the earlier one.
     void openScenes(const std::vector<std::string> &sources, const SceneLoadOptions &options = {});
+    /// Installs what the open in progress has ready. Call it once per UI frame; returns true
+    /// when the scene changed (every view's renderSession() is then a new object).
+    bool updateSceneLoad();
+    bool isLoading() const;
+    /// What the open in progress is doing ("reading body.glb", "inferring layers"), or empty.
+    std::string loadProgress() const;
+    /// Waits for the open in progress and installs its last result (scripts, tests).
+    void finishSceneLoad();
     const std::filesystem::path &sessionPath() const;
     void setRecoveryPath(const std::filesystem::path &file);
     /// The path given, else "<session>.recovery.json" beside the session file, else none.
