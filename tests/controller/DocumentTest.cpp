@@ -247,6 +247,7 @@ TEST_F(DocumentTest, ALayersLinkHoldsBothWaysAfterASessionRoundTripAndAModelRelo
     reopened->view(0).setLayerVisibility(0, LayerVisibility::Hidden);
     EXPECT_EQ(reopened->view(1).visibleLayers(), reopened->view(0).visibleLayers());
     reopened->openScenes({"builtin:cube-in-cube"}); // every layer visible again, then the link
+    reopened->finishSceneLoad();
     EXPECT_EQ(reopened->view(0).visibleLayers(), kAllLayers);
     reopened->view(1).setLayerVisibility(1, LayerVisibility::Hidden);
     EXPECT_EQ(reopened->view(0).layerVisibility(1), LayerVisibility::Hidden);
