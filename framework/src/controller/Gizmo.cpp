@@ -282,8 +282,10 @@ std::optional<GizmoHandle> gizmoHandleAt(const std::vector<GizmoShape> &shapes, 
 GizmoShape dragGizmo(const GizmoShape &start, const GizmoHandle &handle, const GizmoView &view,
                      const glm::vec2 &pressPixel, const glm::vec2 &pixel, KeyModifier modifiers, double minimumSize) {
     GizmoShape shape = start;
-    const auto [o0, d0] = view.ray(pressPixel);
-    const auto [o1, d1] = view.ray(pixel);
+    // Plain variables, not structured bindings: the lambdas below capture them (clang 14
+    // cannot capture a binding).
+    const std::pair<glm::dvec3, glm::dvec3> pressRay = view.ray(pressPixel), pointerRay = view.ray(pixel);
+    const glm::dvec3 o0 = pressRay.first, d0 = pressRay.second, o1 = pointerRay.first, d1 = pointerRay.second;
     const glm::dvec3 forward = view.forward();
     const bool shift = hasModifier(modifiers, KeyModifier::Shift);
     const auto alongLine = [&](const glm::dvec3 &P, const glm::dvec3 &a) -> std::optional<double> {

@@ -54,7 +54,7 @@ namespace mvcl {
 
 class Controller;
 class LensRegistry;
-class Scene;
+struct Scene;
 class Tracer;
 
 class MVCL_EXPORT Document {
