@@ -393,9 +393,10 @@ TEST(Gizmo, BoxDragWritesPropertiesThatReadBackAsTheDraggedShape) {
     GizmoShape moved = drag(start, view, *handleNamed(start, view, "+x"), {25.f, 5.f});
     moved = drag(moved, view, *handleNamed(moved, view, "rotate-y"), {-20.f, 30.f});
     std::vector<PropertyValue> written = values;
-    for (const auto &[name, text] : moved.propertyTexts(context)) {
+    for (const auto &property : moved.propertyTexts(context)) { // not a binding: the lambda captures it
+        const std::string &name = property.first;
         const auto at = std::ranges::find_if(table, [&](const PropertyDecl &d) { return d.name == name; });
-        written[size_t(at - table.begin())] = at->parse(text);
+        written[size_t(at - table.begin())] = at->parse(property.second);
     }
     const GizmoShape back = GizmoShape::read(decl, PropertyValues(table, written), context);
     EXPECT_TRUE(near(back.center, moved.center, 1e-5));

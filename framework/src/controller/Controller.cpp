@@ -132,29 +132,14 @@ void Controller::Private::clearHistory() {
 }
 
 void Controller::Private::passRecovery() {
-    if (document) { // the document's recovery copy holds every view
-        const bool changed = stateTouched;
-        stateTouched = false;
-        document->passRecovery(changed);
-        return;
-    }
+    const bool changed = stateTouched;
+    stateTouched = false;
+    if (document) return document->passRecovery(changed); // its copy holds every view
     recovery.setPath(q.recoveryPath());
-    const RecoveryWriter::Describe describe = [this] { return SessionDescription::fromView(q.description()); };
-    try {
-        if (stateTouched) {
-            stateTouched = false;
-            unsaved = true;
-            recovery.sessionChanged(describe);
-        } else {
-            recovery.update(describe);
-        }
-        lastRecoveryError.clear();
-    } catch (const Error &e) {
-        const Error error(e.source(), "recovery copy not written: " + e.problem());
-        if (error.what() == lastRecoveryError) return; // tried again one interval later: said already
-        lastRecoveryError = error.what();
-        report(error);
-    }
+    if (changed) unsaved = true;
+    if (const std::optional<Error> error =
+            recovery.pass(changed, [this] { return SessionDescription::fromView(q.description()); }))
+        report(*error);
 }
 
 RecoveryWriter &Controller::Private::recoveryWriter() { return document ? document->recovery : recovery; }

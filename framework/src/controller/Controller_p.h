@@ -110,7 +110,6 @@ struct Controller::Private {
     RecoveryWriter &recoveryWriter();
     bool stateTouched = false;    ///< send*() ran since the recovery writer last heard of it
     bool unsaved = false;         ///< the state changed since the session was loaded or saved
-    std::string lastRecoveryError; ///< reported once, not at every retry
     std::function<void(const Error &)> errorCallback;
     std::function<void()> sceneChangedCallback;
 

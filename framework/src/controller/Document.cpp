@@ -205,21 +205,9 @@ std::filesystem::path Document::Private::recoveryPath() const {
 
 void Document::Private::passRecovery(bool changed) {
     recovery.setPath(recoveryPath());
-    const RecoveryWriter::Describe describe = [this] { return owner.description(); };
-    try {
-        if (changed) {
-            unsaved = true;
-            recovery.sessionChanged(describe);
-        } else {
-            recovery.update(describe);
-        }
-        lastRecoveryError.clear();
-    } catch (const Error &e) {
-        const Error error(e.source(), "recovery copy not written: " + e.problem());
-        if (error.what() == lastRecoveryError) return; // tried again one interval later: said already
-        lastRecoveryError = error.what();
-        report(error);
-    }
+    if (changed) unsaved = true;
+    if (const std::optional<Error> error = recovery.pass(changed, [this] { return owner.description(); }))
+        report(*error);
 }
 
 void Document::Private::markSaved() {

@@ -108,7 +108,6 @@ struct Document::Private {
     // --- recovery (the copy holds every view; the views' Controllers forward to it) ---
     RecoveryWriter recovery;
     bool unsaved = false;          ///< the session changed since it was loaded or saved
-    std::string lastRecoveryError; ///< reported once, not at every retry
     /// A change of the session (`changed`), or a frame's chance for the trailing write.
     void passRecovery(bool changed);
     /// What was loaded or saved is no change to recover.

@@ -25,6 +25,20 @@ void RecoveryWriter::update(const Describe &describe) {
     if (m_pending && isDue()) write(describe);
 }
 
+std::optional<Error> RecoveryWriter::pass(bool changed, const Describe &describe) {
+    try {
+        if (changed) sessionChanged(describe);
+        else update(describe);
+        m_lastError.clear();
+        return std::nullopt;
+    } catch (const Error &e) {
+        Error error(e.source(), "recovery copy not written: " + e.problem());
+        if (error.what() == m_lastError) return std::nullopt; // tried again one interval later: said already
+        m_lastError = error.what();
+        return error;
+    }
+}
+
 void RecoveryWriter::flush(const Describe &describe) {
     if (m_pending) write(describe);
 }

@@ -20,12 +20,15 @@
 /// never a part of one. The description is asked for only when a write is due, so a change
 /// costs nothing until then. Everything runs on the caller's thread.
 
+#include <mvcl/core/Error.h>
 #include <mvcl/core/Export.h>
 #include <mvcl/io/SessionFile.h>
 
 #include <chrono>
 #include <filesystem>
 #include <functional>
+#include <optional>
+#include <string>
 
 namespace mvcl {
 
@@ -54,6 +57,10 @@ public:
     /// Writes a pending change once interval() has passed since the last write. Cheap when
     /// nothing is pending.
     void update(const Describe &describe);
+    /// sessionChanged() when `changed`, else update(), for an owner that reports instead of
+    /// throwing: a failed write comes back as the error to show ("recovery copy not written:
+    /// ..."), once; the same failure again, one interval later, comes back empty.
+    std::optional<Error> pass(bool changed, const Describe &describe);
     /// Writes a pending change now, whatever the interval.
     void flush(const Describe &describe);
     /// Forgets a pending change and removes the copy (no error when there is none).
@@ -77,6 +84,7 @@ private:
     bool m_hasWritten = false;
     bool m_pending = false;
     int m_writes = 0;
+    std::string m_lastError; ///< what pass() last reported
 };
 
 } // namespace mvcl
