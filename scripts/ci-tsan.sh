@@ -67,7 +67,9 @@ cmake -S "$repo" -B "$build_dir" -G Ninja -DCMAKE_CXX_COMPILER="$compiler" \
 cmake --build "$build_dir" --target mvcl_tests -- -j"$jobs" >"$build_dir/build.log" 2>&1 ||
   { tail -40 "$build_dir/build.log"; echo "ci-tsan: the TSan build failed" >&2; exit 1; }
 # The tests must run against the instrumented oneTBB, not Debian's (the probe checks it too).
-if ! ldd "$build_dir/bin/mvcl_tests" | grep -q "$tbb_prefix/lib/libtbb"; then
+# grep reads all of ldd's output (no -q): under pipefail, ldd killed by SIGPIPE after an early
+# match would fail the check at random.
+if ! ldd "$build_dir/bin/mvcl_tests" | grep "$tbb_prefix/lib/libtbb" >/dev/null; then
   ldd "$build_dir/bin/mvcl_tests" | grep tbb >&2
   echo "ci-tsan: mvcl_tests does not load the instrumented oneTBB" >&2
   exit 1
