@@ -7,6 +7,8 @@ set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 viewer="${MVCL_BUILD_DIR:-$repo/build}/bin/mvcl-viewer"
 cd "$repo"
+# A copy left by an earlier run would be offered at the start (a modal): each run starts clean.
+rm -f "${TMPDIR:-/tmp}/mvcl-viewer-bench.recovery.json"
 xvfb-run -a -s '-screen 0 1700x800x24' "$viewer" --size 1660x720 \
   --lenses assets/lenses/HRA_Female_Body.json --recovery "${TMPDIR:-/tmp}/mvcl-viewer-bench.recovery.json" \
   --script scripts/viewer-bench.txt "$@"
