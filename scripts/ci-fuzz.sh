@@ -6,8 +6,9 @@
 #                                   buffers inlined) and tests/data/fuzz-regressions;
 #   mvcl-fuzz-obj, -stl, -ply       the OBJ, STL and PLY readers, half that each, seeded with the
 #                                   files of tests/data/meshes that have their extension;
-#   mvcl-fuzz-session               lens-stack (session) files, half that, seeded with
-#                                   assets/lenses/*.json and tests/data/fuzz-regressions/*.json;
+#   mvcl-fuzz-session               session files (lens-stack files and sessions of several views),
+#                                   half that, seeded with assets/lenses/*.json,
+#                                   tests/data/fuzz-seeds/session/ and tests/data/fuzz-regressions/*.json;
 #   mvcl-fuzz-viewer-script         the viewer's scripts, half that, seeded with
 #                                   tests/data/fuzz-seeds/viewer-script/ and scripts/viewer-bench.txt.
 # The corpus grows in the build directory and is reused by the next run.
@@ -65,6 +66,7 @@ PY
 mkdir -p "$seeds/session" "$seeds/viewer-script"
 cp "$repo"/assets/lenses/*.json "$seeds/session/"
 find "$repo/tests/data/fuzz-regressions" -name '*.json' -exec cp {} "$seeds/session/" \;
+cp "$repo"/tests/data/fuzz-seeds/session/*.json "$seeds/session/" # sessions of several views (version 2)
 cp "$repo"/tests/data/fuzz-seeds/viewer-script/* "$repo/scripts/viewer-bench.txt" "$seeds/viewer-script/"
 
 total=0
