@@ -110,3 +110,33 @@ TEST(SceneLoadJob, CancelStopsAndHandsOutNothingMore) {
     // Destroying a job in flight waits for its thread without a crash.
     { SceneLoadJob dropped(engine(), {}); }
 }
+
+TEST(SceneLoadJob, WhenReleasedInfersOnlyAfterReleaseInference) {
+    SceneLoadJob job(engine(), {}, SceneLoadJob::InferenceStart::WhenReleased);
+    std::optional<SceneLoadJob::Result> first;
+    while (!first && !job.isFinished()) {
+        first = job.takeResult();
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    ASSERT_TRUE(first.has_value()) << job.progressText();
+    EXPECT_FALSE(first->layersAreFinal);
+    // Held: longer than the whole inference takes, nothing more comes.
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    EXPECT_EQ(job.stage(), SceneLoadJob::Stage::InferringLayers);
+    EXPECT_FALSE(job.takeResult().has_value());
+    job.releaseInference();
+    job.wait();
+    const std::optional<SceneLoadJob::Result> last = job.takeResult();
+    ASSERT_TRUE(last.has_value());
+    EXPECT_TRUE(last->layersAreFinal);
+    EXPECT_GT(last->scene->layers.count(), 1);
+
+    // Cancelled while held: the job ends without inferring.
+    SceneLoadJob held(engine(), {}, SceneLoadJob::InferenceStart::WhenReleased);
+    while (held.stage() != SceneLoadJob::Stage::InferringLayers && !held.isFinished())
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    held.cancel();
+    held.wait();
+    EXPECT_EQ(held.stage(), SceneLoadJob::Stage::Done);
+    EXPECT_FALSE(held.takeResult().has_value());
+}

@@ -6,6 +6,7 @@
 #include <mvcl/io/SceneLoader.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cctype>
 
 namespace mvcl {
@@ -543,7 +544,8 @@ void Document::openScenes(const std::vector<std::string> &sources, const SceneLo
     d->loadSetup.moreSources.assign(sources.begin() + 1, sources.end());
     d->loadSetup.loadOptions = options;
     d->loadShowedFirst = false;
-    d->loadJob = std::make_unique<SceneLoadJob>(sources, options);
+    // Inference waits for the new scene's first image (updateSceneLoad releases it).
+    d->loadJob = std::make_unique<SceneLoadJob>(sources, options, SceneLoadJob::InferenceStart::WhenReleased);
 }
 
 bool Document::updateSceneLoad() {
@@ -556,8 +558,15 @@ bool Document::updateSceneLoad() {
         if (freshViews) d->setup = d->loadSetup;
         d->installScene(result->scene, result->tracer, freshViews);
         d->loadShowedFirst = true;
+        d->loadShownAt = std::chrono::steady_clock::now();
         changed = true;
     }
+    // The first image of the scene as read renders on every core; then the layers are inferred
+    // (at the latest after a second, so that a view that never finishes a pass cannot hold it).
+    if (d->loadShowedFirst && !changed &&
+        (focused().renderSession().passCount() > 0 ||
+         std::chrono::steady_clock::now() - d->loadShownAt > std::chrono::seconds(1)))
+        d->loadJob->releaseInference();
     if (d->loadJob->isFinished() && !changed) {
         const std::optional<Error> error = d->loadJob->error();
         d->loadJob.reset();
@@ -572,6 +581,7 @@ std::string Document::loadProgress() const { return d->loadJob ? d->loadJob->pro
 
 void Document::finishSceneLoad() {
     while (d->loadJob) {
+        d->loadJob->releaseInference(); // nobody waits for an image here
         d->loadJob->wait();
         updateSceneLoad();
     }
@@ -658,7 +668,11 @@ void Document::updateRenderPriority() {
     const int focus = focusedView();
     if (focus < 0 || focus >= viewCount()) return;
     const bool focusBusy = view(focus).renderSession().hasWork();
-    for (int i = 0; i < viewCount(); ++i) view(i).renderSession().setRefinementHeld(i != focus && focusBusy);
+    // While a model is read and its BVH built, the scene it replaces stops refining: the cores
+    // go to the load (edits still render).
+    const bool reading = d->loadJob && !d->loadShowedFirst;
+    for (int i = 0; i < viewCount(); ++i)
+        view(i).renderSession().setRefinementHeld(reading || (i != focus && focusBusy));
 }
 
 // --- notifications ----------------------------------------------------------------------------------

@@ -10,6 +10,7 @@
 #include <mvcl/controller/ViewSetup.h>
 #include <mvcl/io/SceneLoadJob.h>
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -63,6 +64,7 @@ struct Document::Private {
     std::unique_ptr<SceneLoadJob> loadJob;
     ViewSetup loadSetup;
     bool loadShowedFirst = false; ///< the job's scene as read is installed; the next is the inferred one
+    std::chrono::steady_clock::time_point loadShownAt; ///< when it was installed
     std::vector<std::unique_ptr<SceneLoadJob>> cancelledLoads;
 
     std::filesystem::path sessionPath;

@@ -23,6 +23,8 @@ struct SceneLoadJob::Private {
     std::optional<Result> ready;        ///< the newest result not yet taken
     std::optional<Error> failure;
     std::atomic<bool> cancelled{false};
+    bool inferenceReleased = true; ///< false until releaseInference() for InferenceStart::WhenReleased
+    std::condition_variable released;
     std::thread thread;
 
     void setStage(Stage s, std::string text = {}) {
@@ -75,6 +77,11 @@ void SceneLoadJob::Private::run() {
         // The first scene is shared from here on: inference works on a copy, with the tracer
         // the first result's sessions are querying (queries are const and thread-safe).
         publish(Result{scene, tracer, false}, Stage::InferringLayers);
+        {
+            std::unique_lock lock(mutex);
+            released.wait(lock, [this] { return inferenceReleased || cancelled; });
+        }
+        if (cancelled) return finish(Stage::Done);
         auto inferred = std::make_shared<Scene>(*scene);
         finishLayers(*inferred, *tracer, options);
         if (cancelled) return finish(Stage::Done);
@@ -91,10 +98,11 @@ void SceneLoadJob::Private::run() {
     }
 }
 
-SceneLoadJob::SceneLoadJob(std::vector<std::string> sources, SceneLoadOptions options)
+SceneLoadJob::SceneLoadJob(std::vector<std::string> sources, SceneLoadOptions options, InferenceStart inferenceStart)
     : d(std::make_unique<Private>()) {
     d->sources = std::move(sources);
     d->options = std::move(options);
+    d->inferenceReleased = inferenceStart == InferenceStart::AtOnce;
     d->thread = std::thread([p = d.get()] { p->run(); });
 }
 
@@ -143,9 +151,20 @@ void SceneLoadJob::wait() {
 }
 
 void SceneLoadJob::cancel() {
-    std::lock_guard lock(d->mutex);
-    d->cancelled = true;
-    d->ready.reset();
+    {
+        std::lock_guard lock(d->mutex);
+        d->cancelled = true;
+        d->ready.reset();
+    }
+    d->released.notify_all();
+}
+
+void SceneLoadJob::releaseInference() {
+    {
+        std::lock_guard lock(d->mutex);
+        d->inferenceReleased = true;
+    }
+    d->released.notify_all();
 }
 
 } // namespace mvcl

@@ -42,9 +42,18 @@ public:
         bool layersAreFinal = false;
     };
 
+    /// When the job infers the layers, once the scene as read is handed out.
+    enum class InferenceStart {
+        AtOnce,
+        /// After releaseInference() (or cancel()): an app that shows the first result lets its
+        /// first image render on every core before inference takes them.
+        WhenReleased,
+    };
+
     /// Starts loading at once: loadScene(sources, options) with the inference left to the job
     /// (options.inferenceTiming is ignored).
-    SceneLoadJob(std::vector<std::string> sources, SceneLoadOptions options);
+    SceneLoadJob(std::vector<std::string> sources, SceneLoadOptions options,
+                 InferenceStart inferenceStart = InferenceStart::AtOnce);
     /// Cancels and waits for the thread.
     ~SceneLoadJob();
     SceneLoadJob(const SceneLoadJob &) = delete;
@@ -65,6 +74,8 @@ public:
     void wait();
     /// Stops after the step in progress; no further result is handed out.
     void cancel();
+    /// Lets a job made with InferenceStart::WhenReleased infer the layers (any time; once is enough).
+    void releaseInference();
 
 private:
     struct Private;
