@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <memory>
 
 namespace mvcl::cli {
@@ -224,6 +225,25 @@ RenderCommandLine parseRenderCommandLine(const std::vector<std::string> &args) {
         for (const char *option : {"--frames", "--frame-count", "--frame-rate", "--save-animation"})
             if (app->count(option)) usageError(std::string(option) + " needs --animate, --turntable or --sweep");
     return cl;
+}
+
+RenderSettings renderSettings(const RenderCommandLine &cl) {
+    RenderSettings s;
+    s.width = cl.width;
+    s.height = cl.height;
+    s.samplesPerPixel = cl.samplesPerPixel;
+    s.threads = cl.threads;
+    s.seed = cl.seed;
+    s.skipUnneededStages = !cl.forceAllStages;
+    s.previewBudgetSeconds = 0.0; // nothing moves in a batch render
+    if (isRefining(cl)) {
+        s.sampling = cl.adaptive ? SamplingMode::Adaptive : SamplingMode::Progressive;
+        s.minSamplesPerPixel = std::max(2, cl.samplesPerPixel);
+        s.maxSamplesPerPixel = cl.maxSamplesPerPixel.value_or(std::max(256, cl.samplesPerPixel));
+        s.targetError = cl.targetError.value_or(cl.adaptive ? 0.01f : 0.f);
+        s.timeLimitSeconds = cl.timeLimit.value_or(0.0);
+    }
+    return s;
 }
 
 } // namespace mvcl::cli

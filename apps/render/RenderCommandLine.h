@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include <mvcl/view/RenderSettings.h>
+
 #include <glm/vec3.hpp>
 
 namespace mvcl::cli {
@@ -78,6 +80,10 @@ inline bool isAnimation(const RenderCommandLine &cl) {
 inline bool isRefining(const RenderCommandLine &cl) {
     return cl.adaptive || cl.targetError || cl.timeLimit || cl.maxSamplesPerPixel;
 }
+
+/// The render session's settings the command line asks for (size, samples, seed, threads,
+/// stages, and the sampling mode and budgets when it refines); nothing moves, so no previews.
+RenderSettings renderSettings(const RenderCommandLine &cl);
 
 /// Throws mvcl::Error("command line", ...) on anything malformed.
 RenderCommandLine parseRenderCommandLine(const std::vector<std::string> &args);

@@ -2,7 +2,7 @@
 
 #include <mvcl/controller/ViewSetup.h>
 #include <mvcl/core/Error.h>
-#include <mvcl/io/SceneLoader.h>
+#include <mvcl/io/LoadedScene.h>
 #include <mvcl/tracer/Tracer.h>
 #include <mvcl/view/ImageIO.h>
 #include <mvcl/view/LensOutlines.h>
@@ -39,16 +39,11 @@ void drawViewOutlines(const LensStack &lenses, const std::optional<CompareDescri
 int renderAllViews(const RenderCommandLine &cl, const LensRegistry &registry, const ViewRequest &request) {
     const ViewSetup setup = ViewSetup::prepare(request, registry);
     const SessionDescription &session = *setup.sessionFile;
-    const Scene scene = loadScene(setup.sources(), setup.loadOptions);
-    const Tracer tracer(scene); // one BVH for every view
-    RenderSettings settings;
-    settings.width = cl.width;
-    settings.height = cl.height;
-    settings.samplesPerPixel = cl.samplesPerPixel;
-    settings.threads = cl.threads;
-    settings.seed = cl.seed;
-    settings.skipUnneededStages = !cl.forceAllStages;
-    settings.previewBudgetSeconds = 0.0;
+    const LoadedScene loaded = LoadedScene::load(setup.sources(), setup.loadOptions); // one BVH for every view
+    setup.renameLayers(*loaded.scene);
+    const Scene &scene = *loaded.scene;
+    const Tracer &tracer = *loaded.tracer;
+    const RenderSettings settings = renderSettings(cl);
     const int count = int(session.views.size());
     Framebuffer all(cl.width * count, cl.height);
     for (int i = 0; i < count; ++i) {

@@ -236,25 +236,6 @@ void printLensCosts(const LensStack &stack, const PolicyMap &policies, const Ren
                 policies.policies().size(), grouped(policies.blendedPixelCount()).c_str());
 }
 
-RenderSettings renderSettings(const RenderCommandLine &cl) {
-    RenderSettings s;
-    s.width = cl.width;
-    s.height = cl.height;
-    s.samplesPerPixel = cl.samplesPerPixel;
-    s.threads = cl.threads;
-    s.seed = cl.seed;
-    s.skipUnneededStages = !cl.forceAllStages;
-    s.previewBudgetSeconds = 0.0; // nothing moves in a batch render
-    if (isRefining(cl)) {
-        s.sampling = cl.adaptive ? SamplingMode::Adaptive : SamplingMode::Progressive;
-        s.minSamplesPerPixel = std::max(2, cl.samplesPerPixel);
-        s.maxSamplesPerPixel = cl.maxSamplesPerPixel.value_or(std::max(256, cl.samplesPerPixel));
-        s.targetError = cl.targetError.value_or(cl.adaptive ? 0.01f : 0.f);
-        s.timeLimitSeconds = cl.timeLimit.value_or(0.0);
-    }
-    return s;
-}
-
 std::string samplingName(const RenderSettings &s) {
     char text[160];
     switch (s.sampling) {

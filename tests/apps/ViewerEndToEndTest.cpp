@@ -75,14 +75,7 @@ quit
     const ImageDifference same = compareImages(a, b, 2);
     EXPECT_LT(same.differingFraction, 0.001) << "max channel delta " << same.maxChannelDelta;
 
-    const fs::path golden = fs::path(MVCL_GOLDEN_DIR) / "viewer-three-lenses.png";
-    if (updateGoldenRequested()) {
-        fs::copy_file(first, golden, fs::copy_options::overwrite_existing);
-        GTEST_SKIP() << "wrote " << golden;
-    }
-    ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run with MVCL_UPDATE_GOLDEN=1";
-    const ImageDifference diff = compareImages(a, mvcl::readImage(golden), 8);
-    EXPECT_LT(diff.differingFraction, 0.002) << "max channel delta " << diff.maxChannelDelta;
+    MVCL_EXPECT_MATCHES_GOLDEN(first, fs::path(MVCL_GOLDEN_DIR) / "viewer-three-lenses.png");
 }
 
 TEST(ViewerEndToEnd, ABrokenScriptOrSessionIsAClearErrorNotACrash) {
@@ -252,14 +245,7 @@ quit
     const ImageDifference same = compareImages(image, mvcl::readImage(reopened), 2);
     EXPECT_LT(same.differingFraction, 0.001) << "max channel delta " << same.maxChannelDelta;
 
-    const fs::path golden = fs::path(MVCL_GOLDEN_DIR) / "viewer-gizmo-clip.png";
-    if (updateGoldenRequested()) {
-        fs::copy_file(shot, golden, fs::copy_options::overwrite_existing);
-        GTEST_SKIP() << "wrote " << golden;
-    }
-    ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run with MVCL_UPDATE_GOLDEN=1";
-    const ImageDifference diff = compareImages(image, mvcl::readImage(golden), 8);
-    EXPECT_LT(diff.differingFraction, 0.002) << "max channel delta " << diff.maxChannelDelta;
+    MVCL_EXPECT_MATCHES_GOLDEN(shot, fs::path(MVCL_GOLDEN_DIR) / "viewer-gizmo-clip.png");
 
     // A handle that is not drawn is a clear script error.
     writeScript(dir / "gizmo-bad.txt", "add-lens clip 0.5 0.5\ngizmo-drag 0 radius 5 5\nquit\n");

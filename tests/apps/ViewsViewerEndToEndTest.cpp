@@ -92,14 +92,7 @@ quit
     const ImageDifference same = compareImages(a, mvcl::readImage(second), 2);
     EXPECT_LT(same.differingFraction, 0.001) << "max channel delta " << same.maxChannelDelta;
 
-    const fs::path golden = fs::path(MVCL_GOLDEN_DIR) / "viewer-two-linked-views.png";
-    if (updateGoldenRequested()) {
-        fs::copy_file(first, golden, fs::copy_options::overwrite_existing);
-        GTEST_SKIP() << "wrote " << golden;
-    }
-    ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run with MVCL_UPDATE_GOLDEN=1";
-    const ImageDifference diff = compareImages(a, mvcl::readImage(golden), 8);
-    EXPECT_LT(diff.differingFraction, 0.002) << "max channel delta " << diff.maxChannelDelta;
+    MVCL_EXPECT_MATCHES_GOLDEN(first, fs::path(MVCL_GOLDEN_DIR) / "viewer-two-linked-views.png");
 }
 
 TEST(ViewerEndToEnd, BadViewCommandsFailBeforeTheWindowOpens) {

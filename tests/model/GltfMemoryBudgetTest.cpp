@@ -7,13 +7,14 @@
 #include <mvcl/core/Error.h>
 #include <mvcl/io/SceneLoader.h>
 
-#include <gtest/gtest.h>
+#include <mvcl/testing/ErrorOf.h>
 
-#include <sys/resource.h>
+#include "ProcessMemory.h"
+
+#include <gtest/gtest.h>
 
 #include <cstdint>
 #include <filesystem>
-#include <functional>
 #include <regex>
 #include <string>
 
@@ -22,21 +23,8 @@ namespace {
 
 const std::filesystem::path kModels = std::filesystem::path(MVCL_TEST_DATA_DIR) / "models";
 
-std::string errorOf(const std::function<void()> &load) {
-    try {
-        load();
-    } catch (const Error &e) {
-        return e.what();
-    }
-    return "(no error)";
-}
-
-/// Peak resident memory of this process so far, in MiB.
-long peakResidentMiB() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return usage.ru_maxrss / 1024;
-}
+using test::errorOf;
+using test::peakResidentMiB;
 
 TEST(GltfMemoryBudget, ATwentyMillionTriangleFileIsRefusedWithItsEstimateWithoutReadingIt) {
     // 60 million positions that claim 20 million triangles: an accessor without a bufferView

@@ -8,15 +8,16 @@
 #include <mvcl/core/Error.h>
 #include <mvcl/io/SceneLoader.h>
 
-#include <gtest/gtest.h>
+#include <mvcl/testing/ErrorOf.h>
 
-#include <sys/resource.h>
+#include "ProcessMemory.h"
+
+#include <gtest/gtest.h>
 
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <sstream>
 #include <string>
 
@@ -25,20 +26,8 @@ namespace fs = std::filesystem;
 namespace mvcl {
 namespace {
 
-std::string errorOf(const std::function<void()> &load) {
-    try {
-        load();
-    } catch (const Error &e) {
-        return e.what();
-    }
-    return "(no error)";
-}
-
-long peakResidentMiB() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return usage.ru_maxrss / 1024;
-}
+using test::errorOf;
+using test::peakResidentMiB;
 
 fs::path scratch(const std::string &name) {
     const fs::path dir = fs::temp_directory_path() / "mvcl-mesh-budget-test";

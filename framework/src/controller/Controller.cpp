@@ -295,25 +295,15 @@ void Controller::loadSession(const std::filesystem::path &file) {
         d->document->loadSession(file);
         return;
     }
-    ViewRequest request;
-    request.sessionFile = file;
-    request.origin = file.string(); // "no scene given" is the file's problem here
-    // The app's way of loading (default lights, inference) stays; the rules are the file's.
-    request.loadOptions = d->setup.loadOptions;
-    request.loadOptions.layerRules = {};
-    request.loadOptions.layerContact = {}; // the file's contact tolerance, like its rules
+    const ViewRequest request = ViewSetup::sessionFileRequest(file, d->setup.loadOptions);
     ViewSetup setup = ViewSetup::prepare(request, d->registry);
     const bool sameScene = setup.loadsSameScene(d->setup);
     std::shared_ptr<const Scene> scene;
     std::shared_ptr<const Tracer> tracer;
     if (!sameScene) {
-        try {
-            LoadedScene loaded = LoadedScene::load(setup.sources(), setup.loadOptions);
-            scene = std::move(loaded.scene);
-            tracer = std::move(loaded.tracer);
-        } catch (const Error &e) { // the scene's own error, said to be the session file's scene
-            throw Error(file.string(), "scene: " + std::string(e.what()));
-        }
+        LoadedScene loaded = setup.loadSessionScene(file);
+        scene = std::move(loaded.scene);
+        tracer = std::move(loaded.tracer);
     }
     const Camera camera = setup.camera(sameScene ? *d->scene : *scene, request, coordinates().aspect());
     // Nothing below throws: the file is read and its scene loaded.

@@ -464,26 +464,16 @@ void Document::saveSession(const std::filesystem::path &file) {
 }
 
 void Document::loadSession(const std::filesystem::path &file) {
-    ViewRequest request;
-    request.sessionFile = file;
-    request.origin = file.string(); // "no scene given" is the file's problem here
-    // The app's way of loading (default lights, inference) stays; the rules are the file's.
-    request.loadOptions = d->setup.loadOptions;
-    request.loadOptions.layerRules = {};
-    request.loadOptions.layerContact = {};
+    const ViewRequest request = ViewSetup::sessionFileRequest(file, d->setup.loadOptions);
     ViewSetup setup = ViewSetup::prepare(request, d->registry);
     const SessionDescription &sessionFile = *setup.sessionFile;
     const bool keepScene = setup.loadsSameScene(d->setup);
     std::shared_ptr<const Scene> scene = d->scene;
     std::shared_ptr<const Tracer> tracer = d->tracer;
     if (!keepScene) {
-        try {
-            LoadedScene loaded = LoadedScene::load(setup.sources(), setup.loadOptions);
-            scene = std::move(loaded.scene);
-            tracer = std::move(loaded.tracer);
-        } catch (const Error &e) { // the scene's own error, said to be the session file's scene
-            throw Error(file.string(), "scene: " + std::string(e.what()));
-        }
+        LoadedScene loaded = setup.loadSessionScene(file);
+        scene = std::move(loaded.scene);
+        tracer = std::move(loaded.tracer);
     }
     const int count = int(sessionFile.views.size());
     std::vector<Camera> cameras;

@@ -132,4 +132,22 @@ void ViewSetup::renameLayers(Scene &scene) const {
         if (scene.layers.find(id)) scene.layers.ensure(id).name = name;
 }
 
+ViewRequest ViewSetup::sessionFileRequest(const std::filesystem::path &file, const SceneLoadOptions &options) {
+    ViewRequest request;
+    request.sessionFile = file;
+    request.origin = file.string(); // "no scene given" is the file's problem here
+    request.loadOptions = options;
+    request.loadOptions.layerRules = {};
+    request.loadOptions.layerContact = {};
+    return request;
+}
+
+LoadedScene ViewSetup::loadSessionScene(const std::filesystem::path &sessionFile) const {
+    try {
+        return LoadedScene::load(sources(), loadOptions);
+    } catch (const Error &e) {
+        throw Error(sessionFile.string(), "scene: " + std::string(e.what()));
+    }
+}
+
 } // namespace mvcl

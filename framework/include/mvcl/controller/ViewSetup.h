@@ -16,11 +16,13 @@
 
 #include <mvcl/controller/ViewRequest.h>
 #include <mvcl/io/LensStackFile.h>
+#include <mvcl/io/LoadedScene.h>
 #include <mvcl/io/SceneLoader.h>
 #include <mvcl/io/SessionFile.h>
 #include <mvcl/view/Camera.h>
 
 #include <optional>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -66,6 +68,12 @@ struct MVCL_EXPORT ViewSetup {
     /// The same scene as `other` would load: the same files (two names of one file count as
     /// one), layer rules and contact tolerance. Loading a session keeps the scene then.
     bool loadsSameScene(const ViewSetup &other) const;
+    /// The request with which a running app opens session file `file`: the app's way of loading
+    /// (`options`: default lights, inference) with the file's layer rules and contact tolerance.
+    static ViewRequest sessionFileRequest(const std::filesystem::path &file, const SceneLoadOptions &options);
+    /// This setup's scene and its tracer (one BVH); a load error is said to be the error of the
+    /// scene of `sessionFile`.
+    LoadedScene loadSessionScene(const std::filesystem::path &sessionFile) const;
     /// Gives `scene`'s layers the session's names ("layerNames") over their own; names of
     /// layers the scene does not have are left out. Only names change: a tracer of the scene
     /// stays valid.
