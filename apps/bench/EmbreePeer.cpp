@@ -17,9 +17,9 @@ bool embreeMemoryMonitor(void *, ssize_t bytes, bool) {
     return true;
 }
 
-RTCScene buildEmbree(RTCDevice device, const Scene &scene) {
+RTCScene buildEmbree(RTCDevice device, const Scene &scene, RTCBuildQuality quality) {
     RTCScene es = rtcNewScene(device);
-    rtcSetSceneBuildQuality(es, RTC_BUILD_QUALITY_MEDIUM);
+    rtcSetSceneBuildQuality(es, quality);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         const TriangleMesh &mesh = scene.meshes[m];
         RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);

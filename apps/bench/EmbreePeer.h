@@ -20,8 +20,9 @@ extern std::atomic<long long> g_embreePeak;
 /// For rtcSetDeviceMemoryMonitorFunction: counts Embree's allocations into g_embree*.
 bool embreeMemoryMonitor(void *, ssize_t bytes, bool);
 
-/// The scene's triangle meshes (geometry ID = mesh index), medium build quality, committed.
-RTCScene buildEmbree(RTCDevice device, const Scene &scene);
+/// The scene's triangle meshes (geometry ID = mesh index), committed. Medium quality is Embree's
+/// binned SAH build, the peer of ours; low is its Morton build, the peer of BvhQuality::Quick.
+RTCScene buildEmbree(RTCDevice device, const Scene &scene, RTCBuildQuality quality = RTC_BUILD_QUALITY_MEDIUM);
 
 /// rtcIntersect1 over [0, ∞), the query closestHit answers with a default RayQuery.
 void intersectEmbree(RTCScene scene, const Ray &ray, RTCRayHit &rayHit);

@@ -46,6 +46,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <random>
@@ -84,6 +85,7 @@ struct Options {
     /// --layers: load as mvcl-render does (layer inference), so that the queries reach several
     /// layers and pay for layer priority; by default the raw glTF (layers from extras only).
     bool inferLayers = false;
+    mvcl::BvhQuality bvhQuality = mvcl::BvhQuality::Full;
 };
 
 /// Parses the command line; nullopt when help was asked for (and printed). Throws
@@ -113,6 +115,12 @@ std::optional<Options> parseOptions(int argc, char **argv) {
     app.add_option("--repeat", o.repeat, "best of R runs (default 3)")->type_name("R")->check(mvcl::cli::wholeNumberIn(1, 1000));
     app.add_option("--embree-config", o.embreeConfig, "extra rtcNewDevice options, e.g. tri_accel=bvh4.triangle4")
         ->type_name("OPTIONS");
+    app.add_option("--bvh-quality", o.bvhQuality,
+                   "full: our SAH build against Embree's medium quality (default); quick: our Morton\n"
+                   "build against Embree's low quality (its Morton build)")
+        ->type_name("full|quick")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, mvcl::BvhQuality>{{"full", mvcl::BvhQuality::Full},
+                                                                                   {"quick", mvcl::BvhQuality::Quick}}));
     app.add_flag("--layers", o.inferLayers,
                  "load the model as mvcl-render does (layer rules none, containment inference), so that\n"
                  "closest-hit queries reach several layers and pay for layer priority");
@@ -198,6 +206,7 @@ int main(int argc, char **argv) {
         // --- Build ---
         mvcl::TracerSettings settings;
         settings.buildThreads = opt.threads;
+        settings.bvhQuality = opt.bvhQuality;
         std::unique_ptr<mvcl::Tracer> tracer;
         const double oursBuild = bestSeconds(opt.repeat, [&] {
             tracer.reset();
@@ -216,7 +225,8 @@ int main(int argc, char **argv) {
         embreeBuild = bestSeconds(opt.repeat, [&] {
             if (escene) rtcReleaseScene(escene);
             const long long before = g_embreeBytes.load();
-            escene = buildEmbree(device, scene);
+            escene = buildEmbree(device, scene,
+                                 opt.bvhQuality == mvcl::BvhQuality::Quick ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
             embreeBytes = g_embreeBytes.load() - before;
         });
 #endif

@@ -3,6 +3,8 @@
 #include <mvcl/core/Error.h>
 #include <mvcl/view/ImageIO.h>
 #include <mvcl/view/LensOutlines.h>
+#include <mvcl/model/Scene.h>
+#include <mvcl/tracer/Tracer.h>
 #include <mvcl/view/RenderSession.h>
 
 #include <epoxy/gl.h>
@@ -121,6 +123,15 @@ void Viewer::layout() {
                           windowH > 0 ? float(framebufferH) / float(windowH) : 1.f};
     m_panelWidth = std::min(kPanelWidth * m_contentScale, 0.5f * float(windowW));
     m_viewScreenSize = {std::max(float(windowW) - m_panelWidth, 1.f), std::max(float(windowH), 1.f)};
+}
+
+void Viewer::pollEvents() {
+    const bool opening = m_document && m_document->isLoading() && (!m_openShowedScene || m_awaitingFirstImage);
+    if (!opening) return glfwPollEvents();
+    constexpr std::chrono::duration<double> kOpeningFrame(1.0 / 30.0);
+    const std::chrono::duration<double> left = kOpeningFrame - (Clock::now() - m_frameStart);
+    if (left.count() > 0.0) glfwWaitEventsTimeout(left.count());
+    else glfwPollEvents();
 }
 
 void Viewer::update() {
@@ -295,14 +306,21 @@ void Viewer::updateOpening() {
     stopHistogramWorker(); // the tracer it reads is about to be replaced
     if (!m_document->updateSceneLoad()) return;
     const std::string after = " after " + std::to_string(millisecondsSince(m_openStart)) + " ms";
+    const Scene &scene = m_document->scene();
+    const bool quickBvh = m_document->tracer().buildStats().bvhQuality == BvhQuality::Quick;
     if (!m_openShowedScene) {
-        report("showing " + m_document->scene().name + after +
-               (m_document->isLoading() ? "; inferring its layers" : ""));
+        const std::string next = m_document->isLoading() ? quickBvh ? "; a quick BVH until the full one is built"
+                                                                    : "; inferring its layers"
+                                                         : "";
+        report("showing " + scene.name + after + next);
         m_awaitingFirstImage = true;
         m_openShowedScene = true;
+    } else if (&scene == m_openShownScene) { // the same scene on its full BVH
+        report("full BVH of " + scene.name + " built" + after);
     } else {
-        report("layers of " + m_document->scene().name + " inferred" + after);
+        report("layers of " + scene.name + " inferred" + after);
     }
+    m_openShownScene = &scene;
     refocus();
 }
 

@@ -40,6 +40,11 @@ public:
     Viewer(const Viewer &) = delete;
     Viewer &operator=(const Viewer &) = delete;
 
+    /// Takes the window system's events. While a model opens and its first image is not yet
+    /// on screen, waits for one up to a frame interval (30 a second) instead of drawing as
+    /// fast as it can: nothing but the progress line changes, and with software OpenGL a busy
+    /// UI thread would take a core from the load.
+    void pollEvents();
     /// Before the UI frame: replays the script, takes the render session's new pixels.
     void update();
     /// Inside the ImGui frame: the image, lens overlays, panels; forwards input to the controller.
@@ -202,6 +207,7 @@ private:
     // Opening files without blocking (Document::openScenes): when the open started, and
     // whether the new scene's first image is still to be reported.
     Clock::time_point m_openStart;
+    const Scene *m_openShownScene = nullptr; ///< the scene the last load result showed
     bool m_openShowedScene = false; ///< the open in progress has put its scene on screen
     bool m_awaitingFirstImage = false;
 

@@ -43,7 +43,7 @@ int main(int argc, char **argv) {
     {
         mvcl::viewer::Viewer viewer(window, options);
         while (!glfwWindowShouldClose(window) && !viewer.wantsToQuit()) {
-            glfwPollEvents();
+            viewer.pollEvents();
             viewer.update();
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();

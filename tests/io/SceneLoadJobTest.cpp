@@ -140,3 +140,62 @@ TEST(SceneLoadJob, WhenReleasedInfersOnlyAfterReleaseInference) {
     EXPECT_EQ(held.stage(), SceneLoadJob::Stage::Done);
     EXPECT_FALSE(held.takeResult().has_value());
 }
+
+namespace {
+/// The first result of a job made with InferenceStart::WhenReleased (it waits for it).
+SceneLoadJob::Result firstResultOf(SceneLoadJob &job) {
+    std::optional<SceneLoadJob::Result> first;
+    while (!first && !job.isFinished()) {
+        first = job.takeResult();
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    EXPECT_TRUE(first.has_value()) << job.progressText();
+    return first.value_or(SceneLoadJob::Result{});
+}
+} // namespace
+
+TEST(SceneLoadJob, AQuickBvhFirstThenTheFullOneWithTheInferredLayers) {
+    SceneLoadJob job(engine(), {}, SceneLoadJob::InferenceStart::WhenReleased, SceneLoadJob::FirstBvh::Quick);
+    const SceneLoadJob::Result first = firstResultOf(job);
+    ASSERT_TRUE(first.tracer);
+    EXPECT_EQ(first.tracer->buildStats().bvhQuality, BvhQuality::Quick);
+    EXPECT_FALSE(first.layersAreFinal);
+    EXPECT_EQ(job.stage(), SceneLoadJob::Stage::RefiningBvh);
+    EXPECT_EQ(job.progressText(), "building the full BVH");
+    test::expectSameClosestHits(*first.tracer, Tracer(*first.scene));
+    job.releaseInference();
+    job.wait();
+    const std::optional<SceneLoadJob::Result> last = job.takeResult();
+    ASSERT_TRUE(last.has_value());
+    EXPECT_TRUE(last->layersAreFinal);
+    EXPECT_EQ(last->tracer->buildStats().bvhQuality, BvhQuality::Full);
+    EXPECT_EQ(last->scene->layers.count(), loadScene(engine()).layers.count());
+    test::expectSameClosestHits(*last->tracer, Tracer(*last->scene));
+}
+
+TEST(SceneLoadJob, NothingToInferOnAQuickBvhGivesTheSameSceneOnTheFullOneNext) {
+    SceneLoadJob job({"builtin:cube-in-cube"}, {}, SceneLoadJob::InferenceStart::WhenReleased,
+                     SceneLoadJob::FirstBvh::Quick);
+    const SceneLoadJob::Result first = firstResultOf(job);
+    ASSERT_TRUE(first.tracer);
+    EXPECT_TRUE(first.layersAreFinal);
+    EXPECT_EQ(first.tracer->buildStats().bvhQuality, BvhQuality::Quick);
+    job.releaseInference();
+    job.wait();
+    const std::optional<SceneLoadJob::Result> last = job.takeResult();
+    ASSERT_TRUE(last.has_value());
+    EXPECT_TRUE(last->layersAreFinal);
+    EXPECT_EQ(last->scene, first.scene);
+    EXPECT_EQ(last->tracer->buildStats().bvhQuality, BvhQuality::Full);
+    EXPECT_EQ(job.progressText(), "done");
+}
+
+TEST(SceneLoadJob, SmallScenesGetOneFullBuild) {
+    // The engine (121k triangles) is below kQuickBvhFromTriangles: its first result is full.
+    static_assert(SceneLoadJob::kQuickBvhFromTriangles > 121496);
+    SceneLoadJob job(engine(), {}, SceneLoadJob::InferenceStart::WhenReleased);
+    const SceneLoadJob::Result first = firstResultOf(job);
+    ASSERT_TRUE(first.tracer);
+    EXPECT_EQ(first.tracer->buildStats().bvhQuality, BvhQuality::Full);
+    job.cancel();
+}

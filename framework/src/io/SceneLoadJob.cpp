@@ -23,6 +23,7 @@ struct SceneLoadJob::Private {
     std::optional<Result> ready;        ///< the newest result not yet taken
     std::optional<Error> failure;
     std::atomic<bool> cancelled{false};
+    FirstBvh firstBvh = FirstBvh::QuickWhenLarge;
     bool inferenceReleased = true; ///< false until releaseInference() for InferenceStart::WhenReleased
     std::condition_variable released;
     std::thread thread;
@@ -61,27 +62,41 @@ void SceneLoadJob::Private::run() {
 
         std::size_t triangles = 0;
         for (const TriangleMesh &m : scene->meshes) triangles += m.indices.size();
+        const bool quickFirst = firstBvh == FirstBvh::Quick ||
+                                (firstBvh == FirstBvh::QuickWhenLarge && triangles >= kQuickBvhFromTriangles);
         setStage(Stage::BuildingBvh, std::to_string(triangles));
-        auto tracer = std::make_shared<const Tracer>(*scene);
+        TracerSettings first;
+        first.bvhQuality = quickFirst ? BvhQuality::Quick : BvhQuality::Full;
+        std::shared_ptr<const Tracer> tracer = std::make_shared<const Tracer>(*scene, first);
         if (cancelled) return finish(Stage::Done);
 
         const bool toInfer = std::any_of(scene->meshes.begin(), scene->meshes.end(), [](const TriangleMesh &m) {
             return m.layerSource == LayerSource::Unassigned;
         });
-        if (!toInfer) {
-            // Only names to give: done before anyone else sees the scene.
-            finishLayers(*scene, *tracer, options);
+        // Only names to give: done before anyone else sees the scene.
+        if (!toInfer) finishLayers(*scene, *tracer, options);
+        if (!toInfer && !quickFirst) {
             publish(Result{scene, tracer, true}, Stage::Done);
             return finish(Stage::Done);
         }
-        // The first scene is shared from here on: inference works on a copy, with the tracer
-        // the first result's sessions are querying (queries are const and thread-safe).
-        publish(Result{scene, tracer, false}, Stage::InferringLayers);
+        // The first scene is shared from here on: inference works on a copy.
+        publish(Result{scene, tracer, !toInfer}, quickFirst ? Stage::RefiningBvh : Stage::InferringLayers);
         {
             std::unique_lock lock(mutex);
             released.wait(lock, [this] { return inferenceReleased || cancelled; });
         }
         if (cancelled) return finish(Stage::Done);
+        if (quickFirst) {
+            // The full build, over the same scene: the first result's sessions keep querying
+            // the quick tracer meanwhile (queries are const and thread-safe).
+            tracer = std::make_shared<const Tracer>(*scene);
+            if (cancelled) return finish(Stage::Done);
+            if (!toInfer) {
+                publish(Result{scene, tracer, true}, Stage::Done);
+                return finish(Stage::Done);
+            }
+            setStage(Stage::InferringLayers);
+        }
         auto inferred = std::make_shared<Scene>(*scene);
         finishLayers(*inferred, *tracer, options);
         if (cancelled) return finish(Stage::Done);
@@ -98,10 +113,12 @@ void SceneLoadJob::Private::run() {
     }
 }
 
-SceneLoadJob::SceneLoadJob(std::vector<std::string> sources, SceneLoadOptions options, InferenceStart inferenceStart)
+SceneLoadJob::SceneLoadJob(std::vector<std::string> sources, SceneLoadOptions options, InferenceStart inferenceStart,
+                           FirstBvh firstBvh)
     : d(std::make_unique<Private>()) {
     d->sources = std::move(sources);
     d->options = std::move(options);
+    d->firstBvh = firstBvh;
     d->inferenceReleased = inferenceStart == InferenceStart::AtOnce;
     d->thread = std::thread([p = d.get()] { p->run(); });
 }
@@ -121,6 +138,7 @@ std::string SceneLoadJob::progressText() const {
     switch (d->stage) {
     case Stage::Reading: return "reading " + d->detail;
     case Stage::BuildingBvh: return "building the BVH of " + d->detail + " triangles";
+    case Stage::RefiningBvh: return "building the full BVH";
     case Stage::InferringLayers: return "inferring layers";
     case Stage::Done: return "done";
     case Stage::Failed: return d->failure ? std::string(d->failure->what()) : std::string("failed");

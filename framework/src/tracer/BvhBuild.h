@@ -4,6 +4,7 @@
 // their table (KernelTables.h). One type for every instruction set: their member functions are
 // MVCL_KERNEL_INLINE, never an out-of-line copy one unit could take from another (KernelIsa.h).
 
+#include "Bvh.h"
 #include "KernelIsa.h"
 
 #include <glm/common.hpp>
@@ -160,5 +161,13 @@ struct Binner {
 #endif
     }
 };
+
+/// The build records of `prims` (their boxes, ids and layer bits, in the same order) and the
+/// bounds of them all: the first pass of both builders.
+struct BuildPrims {
+    std::unique_ptr<BuildPrim[], AlignedFree> prims;
+    RangeBounds bounds;
+};
+BuildPrims makeBuildPrims(const PrimArray &prims, int threads);
 
 } // namespace mvcl::detail

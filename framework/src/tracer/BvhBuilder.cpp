@@ -351,28 +351,22 @@ std::unique_ptr<BvhNode[], AlignedFree> allocateNodes(std::size_t count) {
 
 } // namespace
 
-
-Bvh buildBvh(BvhBuildInput input) {
-    Bvh bvh;
-    const std::size_t n = input.prims.size();
-    if (n == 0) return bvh;
-    if (n >= (std::size_t(1) << (BvhNode::kCountShift - 1)))
-        throw Error("tracer", "too many primitives for the BVH (" + std::to_string(n) + ")");
-
-    // Boxes in parallel chunks; the root bounds are merged from per-chunk bounds (min/max is
-    // exact in any order).
+BuildPrims makeBuildPrims(const PrimArray &prims, int threads) {
+    const std::size_t n = prims.size();
+    BuildPrims out;
     // Not value-initialised: the chunks below write every record.
-    const std::unique_ptr<BuildPrim[], AlignedFree> build(
-        static_cast<BuildPrim *>(allocateAligned(n * sizeof(BuildPrim))));
+    out.prims.reset(static_cast<BuildPrim *>(allocateAligned(std::max<std::size_t>(1, n) * sizeof(BuildPrim))));
+    // Boxes in parallel chunks; the bounds of all are merged from per-chunk bounds (min/max is
+    // exact in any order).
     constexpr std::size_t kChunk = 16384;
     const std::size_t chunks = (n + kChunk - 1) / kChunk;
     std::vector<RangeBounds> chunkBounds(chunks);
-    mvcl::parallelFor(chunks, input.threads, [&](std::size_t c) {
+    mvcl::parallelFor(chunks, threads, [&](std::size_t c) {
         const std::size_t end = std::min(n, (c + 1) * kChunk);
         RangeBounds bounds; // local: neighbouring chunks' bounds share cache lines
         for (std::size_t i = c * kChunk; i < end; ++i) {
-            const PrimRecord &r = input.prims[i];
-            BuildPrim &b = build[i];
+            const PrimRecord &r = prims[i];
+            BuildPrim &b = out.prims[i];
             if (r.kind == uint8_t(PrimKind::Sphere)) {
                 const glm::vec3 rad(r.p1.x);
                 b.lo = r.p0 - rad;
@@ -392,11 +386,23 @@ Bvh buildBvh(BvhBuildInput input) {
         }
         chunkBounds[c] = bounds;
     });
-    RangeBounds rootBounds;
     for (const RangeBounds &cb : chunkBounds) {
-        rootBounds.box.grow(cb.box);
-        rootBounds.cbox.grow(cb.cbox);
+        out.bounds.box.grow(cb.box);
+        out.bounds.cbox.grow(cb.cbox);
     }
+    return out;
+}
+
+Bvh buildBvh(BvhBuildInput input) {
+    Bvh bvh;
+    const std::size_t n = input.prims.size();
+    if (n == 0) return bvh;
+    if (n >= (std::size_t(1) << (BvhNode::kCountShift - 1)))
+        throw Error("tracer", "too many primitives for the BVH (" + std::to_string(n) + ")");
+
+    const BuildPrims boxes = makeBuildPrims(input.prims, input.threads);
+    BuildPrim *const build = boxes.prims.get();
+    const RangeBounds &rootBounds = boxes.bounds;
 
     const int maxLeaf = std::clamp(input.maxLeafSize, 1, int(BvhNode::kMaxLeafCount));
     // At most n leaves, so at most 2n − 1 nodes; pages past the ones used are never touched.
@@ -411,13 +417,13 @@ Bvh buildBvh(BvhBuildInput input) {
         // calling thread, and wait() belongs in the same one.
         workerArena(input.threads).execute([&] {
             tbb::task_group tasks;
-            Builder builder(build.get(), bvh.nodes.get(), maxLeaf, &tasks);
+            Builder builder(build, bvh.nodes.get(), maxLeaf, &tasks);
             tasks.run_and_wait([&] { builder.build(0, 0, uint32_t(n), 0, rootBounds); });
             builder.finishLayerMasks();
             keepStats(builder);
         });
     } else {
-        Builder builder(build.get(), bvh.nodes.get(), maxLeaf, nullptr);
+        Builder builder(build, bvh.nodes.get(), maxLeaf, nullptr);
         builder.build(0, 0, uint32_t(n), 0, rootBounds);
         keepStats(builder);
     }

@@ -134,11 +134,13 @@ Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
 
     input.maxLeafSize = settings.maxLeafSize;
     {
-        const detail::Bvh bvh = detail::buildBvh(std::move(input));
+        const detail::Bvh bvh = settings.bvhQuality == BvhQuality::Quick ? detail::buildMortonBvh(std::move(input))
+                                                                          : detail::buildBvh(std::move(input));
         d->wide = detail::collapseToWide(bvh, threads);
         d->stats.leaves = bvh.leafCount;
         d->stats.maxDepth = bvh.maxDepth;
     }
+    d->stats.bvhQuality = settings.bvhQuality;
     d->stats.nodes = d->wide.nodeCount;
     d->stats.memoryBytes = d->wide.nodeCount * sizeof(detail::WideNode) +
                            d->wide.blockCount * sizeof(detail::PrimBlock) +
