@@ -13,6 +13,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -307,16 +308,19 @@ void Viewer::updateOpening() {
     if (!m_document->updateSceneLoad()) return;
     const std::string after = " after " + std::to_string(millisecondsSince(m_openStart)) + " ms";
     const Scene &scene = m_document->scene();
-    const bool quickBvh = m_document->tracer().buildStats().bvhQuality == BvhQuality::Quick;
+    const TracerBuildStats &bvh = m_document->tracer().buildStats();
+    const bool quickBvh = bvh.bvhQuality == BvhQuality::Quick;
     if (!m_openShowedScene) {
         const std::string next = m_document->isLoading() ? quickBvh ? "; a quick BVH until the full one is built"
                                                                     : "; inferring its layers"
                                                          : "";
-        report("showing " + scene.name + after + next);
+        report("showing " + scene.name + after + " (" + (quickBvh ? "quick " : "") + "BVH " +
+               std::to_string(std::lround(bvh.buildMilliseconds)) + " ms)" + next);
         m_awaitingFirstImage = true;
         m_openShowedScene = true;
     } else if (&scene == m_openShownScene) { // the same scene on its full BVH
-        report("full BVH of " + scene.name + " built" + after);
+        report("full BVH of " + scene.name + " built" + after + " (" + std::to_string(std::lround(bvh.buildMilliseconds)) +
+               " ms)");
     } else {
         report("layers of " + scene.name + " inferred" + after);
     }
