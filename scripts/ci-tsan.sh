@@ -18,7 +18,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/ci-common.sh"
 
 build_dir="${MVCL_TSAN_BUILD_DIR:-$repo/build-tsan}"
 compiler=clang++-14
-tests="${MVCL_TSAN_TESTS:-^(ThreadSanitizer\.|WorkerPool\.|RenderSessionTest\.|EditStorm\.|Controller|ViewSetupTest\.|Picking\.|DepthHistogram\.|SceneLoadJob\.|Document|RenderPriority|RefinementHold|CompareRender|LensStackCompose\.|PolicyMapDiff\.|Renderer\.)}"
+tests="${MVCL_TSAN_TESTS:-^(ThreadSanitizer\.|WorkerPool\.|RenderSessionTest\.|EditStorm\.|Controller|ViewSetupTest\.|Picking\.|DepthHistogram\.|SceneLoadJob\.|QuickBvh\.|Document|RenderPriority|RefinementHold|CompareRender|LensStackCompose\.|PolicyMapDiff\.|Renderer\.)}"
 # dpkg-dev unpacks the source package; llvm-14 brings llvm-symbolizer for stacks with file:line.
 ci_ensure_packages clang-14 llvm-14 dpkg-dev libtbb-dev
 export TSAN_OPTIONS="second_deadlock_stack=1:history_size=4:suppressions=$repo/tests/sanitizers/tsan.supp:external_symbolizer_path=$(command -v llvm-symbolizer-14 || true):${TSAN_OPTIONS_EXTRA:-}"
