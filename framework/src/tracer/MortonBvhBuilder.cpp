@@ -71,23 +71,32 @@ public:
                   bool parallel)
         : m_keys(keys), m_boxes(boxes), m_slots(slots), m_maxLeaf(uint32_t(maxLeaf)), m_parallel(parallel) {}
 
+    /// What a subtree holds besides its nodes: counted on the way back up, not in shared
+    /// counters that two threads would pass one cache line back and forth for.
+    struct Subtree {
+        std::size_t leaves = 0;
+        int depth = 0; ///< of its deepest node, counted from the root
+    };
+
     /// Builds the subtree of sorted keys [begin, end) into `slot`, bounds and layer mask included.
-    void build(uint32_t slot, uint32_t begin, uint32_t end, int depth) {
-        noteDepth(depth);
+    Subtree build(uint32_t slot, uint32_t begin, uint32_t end, int depth) {
         BvhNode &node = m_slots[slot];
         const uint32_t n = end - begin;
-        if (n <= m_maxLeaf) return makeLeaf(node, begin, n);
-
+        if (n <= m_maxLeaf) {
+            makeLeaf(node, begin, n);
+            return {1, depth};
+        }
         // A range that two leaves can hold is halved: split by its codes it would often leave a
         // leaf of one and another of several, more leaves (blocks) for the same primitives.
         const uint32_t mid = n <= 2 * m_maxLeaf ? begin + n / 2 : splitOf(begin, end);
         const uint32_t base = m_nextSlot.fetch_add(2, std::memory_order_relaxed);
+        Subtree left, right;
         if (m_parallel && n >= kMinParallelPrims)
-            tbb::parallel_invoke([&] { build(base, begin, mid, depth + 1); },
-                                 [&] { build(base + 1, mid, end, depth + 1); });
+            tbb::parallel_invoke([&] { left = build(base, begin, mid, depth + 1); },
+                                 [&] { right = build(base + 1, mid, end, depth + 1); });
         else {
-            build(base, begin, mid, depth + 1);
-            build(base + 1, mid, end, depth + 1);
+            left = build(base, begin, mid, depth + 1);
+            right = build(base + 1, mid, end, depth + 1);
         }
         const BvhNode &a = m_slots[base], &b = m_slots[base + 1];
         for (int k = 0; k < 3; ++k) {
@@ -96,10 +105,9 @@ public:
         }
         node.layerMask = a.layerMask | b.layerMask;
         node.index = base;
+        return {left.leaves + right.leaves, std::max(left.depth, right.depth)};
     }
 
-    int maxDepth() const { return m_maxDepth.load(); }
-    std::size_t leafCount() const { return m_leafCount.load(); }
     uint32_t slotsUsed() const { return m_nextSlot.load(); }
 
 private:
@@ -135,13 +143,6 @@ private:
         node.bounds[3] = hi.x, node.bounds[4] = hi.y, node.bounds[5] = hi.z;
         node.layerMask = mask;
         node.index = (n << BvhNode::kCountShift) | begin;
-        m_leafCount.fetch_add(1, std::memory_order_relaxed);
-    }
-
-    void noteDepth(int depth) {
-        int cur = m_maxDepth.load(std::memory_order_relaxed);
-        while (depth > cur && !m_maxDepth.compare_exchange_weak(cur, depth)) {
-        }
     }
 
     const uint64_t *m_keys;
@@ -150,8 +151,6 @@ private:
     uint32_t m_maxLeaf;
     bool m_parallel;
     std::atomic<uint32_t> m_nextSlot{1}; ///< slot 0 is the root
-    std::atomic<int> m_maxDepth{0};
-    std::atomic<std::size_t> m_leafCount{0};
 };
 
 } // namespace
@@ -200,10 +199,10 @@ Bvh buildMortonBvh(BvhBuildInput input) {
     bvh.nodes.reset(static_cast<BvhNode *>(allocateAligned(2 * n * sizeof(BvhNode))));
     const auto build = [&](bool parallel) {
         MortonBuilder builder(keys.get(), sorted.get(), bvh.nodes.get(), maxLeaf, parallel);
-        builder.build(0, 0, uint32_t(n), 0);
+        const MortonBuilder::Subtree tree = builder.build(0, 0, uint32_t(n), 0);
         bvh.nodeCount = builder.slotsUsed();
-        bvh.leafCount = builder.leafCount();
-        bvh.maxDepth = builder.maxDepth();
+        bvh.leafCount = tree.leaves;
+        bvh.maxDepth = tree.depth;
     };
     if (input.threads > 1) workerArena(input.threads).execute([&] { build(true); });
     else build(false);
