@@ -129,10 +129,19 @@ void Viewer::layout() {
 void Viewer::pollEvents() {
     const bool opening = m_document && m_document->isLoading() && (!m_openShowedScene || m_awaitingFirstImage);
     if (!opening) return glfwPollEvents();
-    constexpr std::chrono::duration<double> kOpeningFrame(1.0 / 30.0);
-    const std::chrono::duration<double> left = kOpeningFrame - (Clock::now() - m_frameStart);
-    if (left.count() > 0.0) glfwWaitEventsTimeout(left.count());
-    else glfwPollEvents();
+    // Short waits, up to a tenth of a second in all, that end at once for input and for what the
+    // load has to show: its next stage (a result is out) or the first pass of the new scene.
+    constexpr std::chrono::milliseconds kOpeningFrame(100);
+    constexpr std::chrono::duration<double> kSlice(0.005);
+    const std::string progress = m_document->loadProgress();
+    const RenderSession &session = m_document->view(m_document->focusedView()).renderSession();
+    const uint64_t passes = session.passCount();
+    while (Clock::now() - m_frameStart < kOpeningFrame) {
+        const Clock::time_point before = Clock::now();
+        glfwWaitEventsTimeout(kSlice.count());
+        if (Clock::now() - before < kSlice * 0.8) return; // woken by an event
+        if (session.passCount() != passes || m_document->loadProgress() != progress) return;
+    }
 }
 
 void Viewer::update() {

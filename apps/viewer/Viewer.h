@@ -41,9 +41,10 @@ public:
     Viewer &operator=(const Viewer &) = delete;
 
     /// Takes the window system's events. While a model opens and its first image is not yet
-    /// on screen, waits for one up to a frame interval (30 a second) instead of drawing as
-    /// fast as it can: nothing but the progress line changes, and with software OpenGL a busy
-    /// UI thread would take a core from the load.
+    /// on screen, waits up to a tenth of a second for input or for the load's next step instead
+    /// of drawing as fast as it can: nothing but the progress line changes meanwhile, and with
+    /// software OpenGL (and the X server's share) a frame of the whole window costs a core some
+    /// 20 ms that the load needs.
     void pollEvents();
     /// Before the UI frame: replays the script, takes the render session's new pixels.
     void update();

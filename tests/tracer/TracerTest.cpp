@@ -252,7 +252,7 @@ TEST(Tracer, Avx2AndSseBinningBuildTheSameTree) {
     auto makeInput = [&](int threads) {
         std::mt19937 r(rng);
         detail::BvhBuildInput input;
-        input.prims.allocate(kCount);
+        input.prims.allocate(kCount, detail::Pages::HugeWhenLarge);
         input.threads = threads;
         input.maxLeafSize = 15;
         for (std::size_t i = 0; i < kCount; ++i) {

@@ -51,10 +51,17 @@ struct AlignedFree {
     void operator()(void *p) const;
 };
 
+/// Which pages large arrays take. Huge pages make a build that reuses warm memory and the
+/// queries faster (fewer TLB misses), but a process's first touch of fresh huge pages can cost
+/// more than it saves: in the viewer, opening a 1.18M-triangle model, the quick build took twice
+/// its CPU time on them, most of it the kernel zeroing 2 MiB pages. The quick build, whose
+/// point is latency, takes small pages.
+enum class Pages { HugeWhenLarge, Small };
+
 /// 64-byte aligned memory for node and leaf arrays (a node never straddles more cache lines
-/// than it must), released with AlignedFree. Not initialised. Arrays of several MiB go on
-/// transparent huge pages when the system allows it.
-void *allocateAligned(std::size_t bytes);
+/// than it must), released with AlignedFree. Not initialised. With Pages::HugeWhenLarge, arrays
+/// of several MiB go on transparent huge pages when the system allows it.
+void *allocateAligned(std::size_t bytes, Pages pages = Pages::HugeWhenLarge);
 
 /// The build input records. Not a std::vector: they are written by parallel chunks right after
 /// allocation, and value-initialising hundreds of thousands first would be a serial pass.
@@ -62,8 +69,8 @@ struct PrimArray {
     std::unique_ptr<PrimRecord[], AlignedFree> data;
     std::size_t count = 0;
 
-    void allocate(std::size_t n) {
-        data.reset(static_cast<PrimRecord *>(allocateAligned(n * sizeof(PrimRecord))));
+    void allocate(std::size_t n, Pages pages) {
+        data.reset(static_cast<PrimRecord *>(allocateAligned(n * sizeof(PrimRecord), pages)));
         count = n;
     }
     std::size_t size() const { return count; }
@@ -82,12 +89,14 @@ struct Bvh {
     int maxDepth = 0;
     PrimArray prims;             ///< the build input, in input order
     std::vector<uint32_t> order;   ///< leaf order: a leaf's primitives are prims[order[offset + i]]
+    Pages pages = Pages::HugeWhenLarge; ///< the build's, for the arrays made from the tree too
 };
 
 struct BvhBuildInput {
     PrimArray prims; ///< any order; only valid (finite, non-degenerate) ones
     int maxLeafSize = 4;
     int threads = 1;
+    Pages pages = Pages::HugeWhenLarge; ///< of the build's arrays and the output's
 };
 
 /// Binned SAH build with leaf costs counted in blocks of four primitives (what the 4-wide

@@ -168,6 +168,6 @@ struct BuildPrims {
     std::unique_ptr<BuildPrim[], AlignedFree> prims;
     RangeBounds bounds;
 };
-BuildPrims makeBuildPrims(const PrimArray &prims, int threads);
+BuildPrims makeBuildPrims(const PrimArray &prims, int threads, Pages pages);
 
 } // namespace mvcl::detail

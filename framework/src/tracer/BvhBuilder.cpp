@@ -47,13 +47,13 @@ namespace mvcl::detail {
 
 void AlignedFree::operator()(void *p) const { std::free(p); }
 
-void *allocateAligned(std::size_t bytes) {
+void *allocateAligned(std::size_t bytes, Pages pages) {
 #if defined(__linux__)
     // Large arrays (build nodes, wide nodes, leaf blocks: megabytes written once, right after
     // allocation) on transparent huge pages where the system allows them on request: thousands
     // of 4 KiB first-touch faults were a visible share of the build.
     constexpr std::size_t kHuge = std::size_t(2) << 20;
-    if (bytes >= 2 * kHuge) {
+    if (pages == Pages::HugeWhenLarge && bytes >= 2 * kHuge) {
         const std::size_t size = (bytes + kHuge - 1) / kHuge * kHuge;
         void *p = std::aligned_alloc(kHuge, size);
         if (!p) throw std::bad_alloc();
@@ -344,18 +344,18 @@ private:
     std::atomic<std::size_t> m_leafCount{0};
 };
 
-std::unique_ptr<BvhNode[], AlignedFree> allocateNodes(std::size_t count) {
+std::unique_ptr<BvhNode[], AlignedFree> allocateNodes(std::size_t count, Pages pages) {
     return std::unique_ptr<BvhNode[], AlignedFree>(
-        static_cast<BvhNode *>(allocateAligned(count * sizeof(BvhNode))));
+        static_cast<BvhNode *>(allocateAligned(count * sizeof(BvhNode), pages)));
 }
 
 } // namespace
 
-BuildPrims makeBuildPrims(const PrimArray &prims, int threads) {
+BuildPrims makeBuildPrims(const PrimArray &prims, int threads, Pages pages) {
     const std::size_t n = prims.size();
     BuildPrims out;
     // Not value-initialised: the chunks below write every record.
-    out.prims.reset(static_cast<BuildPrim *>(allocateAligned(std::max<std::size_t>(1, n) * sizeof(BuildPrim))));
+    out.prims.reset(static_cast<BuildPrim *>(allocateAligned(std::max<std::size_t>(1, n) * sizeof(BuildPrim), pages)));
     // Boxes in parallel chunks; the bounds of all are merged from per-chunk bounds (min/max is
     // exact in any order).
     constexpr std::size_t kChunk = 16384;
@@ -400,13 +400,14 @@ Bvh buildBvh(BvhBuildInput input) {
     if (n >= (std::size_t(1) << (BvhNode::kCountShift - 1)))
         throw Error("tracer", "too many primitives for the BVH (" + std::to_string(n) + ")");
 
-    const BuildPrims boxes = makeBuildPrims(input.prims, input.threads);
+    const BuildPrims boxes = makeBuildPrims(input.prims, input.threads, input.pages);
     BuildPrim *const build = boxes.prims.get();
     const RangeBounds &rootBounds = boxes.bounds;
 
     const int maxLeaf = std::clamp(input.maxLeafSize, 1, int(BvhNode::kMaxLeafCount));
     // At most n leaves, so at most 2n − 1 nodes; pages past the ones used are never touched.
-    bvh.nodes = allocateNodes(2 * n);
+    bvh.nodes = allocateNodes(2 * n, input.pages);
+    bvh.pages = input.pages;
     const auto keepStats = [&bvh](const Builder &builder) {
         bvh.nodeCount = builder.slotsUsed();
         bvh.leafCount = builder.leafCount();

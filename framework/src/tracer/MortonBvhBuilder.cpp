@@ -162,7 +162,7 @@ Bvh buildMortonBvh(BvhBuildInput input) {
     if (n >= (std::size_t(1) << (BvhNode::kCountShift - 1)))
         throw Error("tracer", "too many primitives for the BVH (" + std::to_string(n) + ")");
 
-    const BuildPrims boxes = makeBuildPrims(input.prims, input.threads);
+    const BuildPrims boxes = makeBuildPrims(input.prims, input.threads, input.pages);
     // The centroids' grid, with the binning's guard against extents that overflow or vanish
     // (such an axis contributes no bits: its primitives are told apart by the other axes).
     const glm::vec3 clo = boxes.bounds.cbox.min(), chi = boxes.bounds.cbox.max();
@@ -190,13 +190,14 @@ Bvh buildMortonBvh(BvhBuildInput input) {
     sortByCode(keys, n);
     // The boxes in the sorted order, gathered once by independent loads (in the tree's leaves,
     // each would be a cache miss on the recursion's path).
-    const std::unique_ptr<BuildPrim[], AlignedFree> sorted(static_cast<BuildPrim *>(allocateAligned(n * sizeof(BuildPrim))));
+    const std::unique_ptr<BuildPrim[], AlignedFree> sorted(static_cast<BuildPrim *>(allocateAligned(n * sizeof(BuildPrim), input.pages)));
     mvcl::parallelForChunks(n, input.threads, 16384, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) sorted[i] = boxes.prims[uint32_t(keys[i])];
     });
 
     const int maxLeaf = std::min(std::clamp(input.maxLeafSize, 1, int(BvhNode::kMaxLeafCount)), int(kBlockSize));
-    bvh.nodes.reset(static_cast<BvhNode *>(allocateAligned(2 * n * sizeof(BvhNode))));
+    bvh.nodes.reset(static_cast<BvhNode *>(allocateAligned(2 * n * sizeof(BvhNode), input.pages)));
+    bvh.pages = input.pages;
     const auto build = [&](bool parallel) {
         MortonBuilder builder(keys.get(), sorted.get(), bvh.nodes.get(), maxLeaf, parallel);
         const MortonBuilder::Subtree tree = builder.build(0, 0, uint32_t(n), 0);

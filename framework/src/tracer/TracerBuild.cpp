@@ -100,7 +100,8 @@ Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
         if (isFinite(sp.center) && std::isfinite(sp.radius) && sp.radius > 0.f)
             validSpheres.push_back(uint32_t(s));
     }
-    input.prims.allocate(triangles + validSpheres.size());
+    input.pages = settings.bvhQuality == BvhQuality::Quick ? detail::Pages::Small : detail::Pages::HugeWhenLarge;
+    input.prims.allocate(triangles + validSpheres.size(), input.pages);
     parallelFor(chunks.size(), threads, [&](std::size_t c) {
         const Chunk &ch = chunks[c];
         const uint8_t layer = clampLayer(scene.meshes[ch.mesh].layer);

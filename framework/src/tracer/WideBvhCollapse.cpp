@@ -29,9 +29,9 @@ float area(const BvhNode &n) {
 }
 
 template <class T>
-std::unique_ptr<T[], AlignedFree> allocateArray(std::size_t count) {
+std::unique_ptr<T[], AlignedFree> allocateArray(std::size_t count, Pages pages) {
     return std::unique_ptr<T[], AlignedFree>(
-        static_cast<T *>(allocateAligned(std::max<std::size_t>(1, count) * sizeof(T))));
+        static_cast<T *>(allocateAligned(std::max<std::size_t>(1, count) * sizeof(T), pages)));
 }
 
 uint32_t blocksOfLeaf(const BvhNode &leaf) { return (leaf.count() + 3) / 4; }
@@ -179,7 +179,7 @@ WideBvh collapseToWide(const Bvh &bvh, int threads) {
     out.rootMask = root.layerMask;
     // Upper bound for the top: a wide node replaces at least one binary interior node (there
     // are leafCount − 1 of those).
-    out.nodes = allocateArray<WideNode>(bvh.leafCount);
+    out.nodes = allocateArray<WideNode>(bvh.leafCount, bvh.pages);
 
     std::vector<Task> tasks;
     uint32_t topNodes = 0;
@@ -201,9 +201,9 @@ WideBvh collapseToWide(const Bvh &bvh, int threads) {
     }
     out.nodeCount = nodeCount;
     out.blockCount = blockCount;
-    out.blocks = allocateArray<PrimBlock>(blockCount);
+    out.blocks = allocateArray<PrimBlock>(blockCount, bvh.pages);
     // Not value-initialised: the tasks below write every lane, each on its own thread.
-    out.info = allocateArray<PrimInfo>(4 * std::size_t(blockCount));
+    out.info = allocateArray<PrimInfo>(4 * std::size_t(blockCount), bvh.pages);
     mvcl::parallelFor(tasks.size(), threads, [&](std::size_t i) {
         const Task &t = tasks[i];
         Collapser c(bvh, out, t.nodeBase, t.blockBase);
