@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
+#include <fstream>
 #include <string>
 
 namespace mvcl::bench {
@@ -40,6 +41,21 @@ double bestSeconds(int repeat, const F &f) {
         best = std::min(best, secondsSince(start));
     }
     return best;
+}
+
+/// The CPU's model name as the system reports it ("model name" in /proc/cpuinfo, what lscpu
+/// prints), so that every ratio is printed beside the CPU it was measured on; "unknown CPU"
+/// where the system does not say.
+inline std::string cpuModelName() {
+    std::ifstream cpuinfo("/proc/cpuinfo");
+    for (std::string line; std::getline(cpuinfo, line);) {
+        if (line.rfind("model name", 0) != 0) continue;
+        const std::size_t colon = line.find(':');
+        if (colon == std::string::npos) break;
+        const std::size_t start = line.find_first_not_of(" \t", colon + 1);
+        return start == std::string::npos ? std::string("unknown CPU") : line.substr(start);
+    }
+    return "unknown CPU";
 }
 
 /// Only the triangle meshes of `scene`: both tracers get exactly the same geometry.

@@ -110,7 +110,8 @@ bool runPacketComparison(const PacketBenchInput &in) {
 #endif
     std::printf("\npackets: 4x4 tiles, %zu primary and %zu shadow packets, %d runs each side, alternating\n",
                 primaryPackets.count(), shadowPackets.count(), in.repeat);
-    std::printf("  ours: single rays %s, packets %s\n", tracer.singleRayIsa(), tracer.packetIsa());
+    std::printf("  ours: single rays %s, packets %s, on %s\n", tracer.singleRayIsa(), tracer.packetIsa(),
+                cpuModelName().c_str());
 #ifdef MVCL_HAVE_EMBREE
     if (withPeer) std::printf("  embree %s:\n%s", RTC_VERSION_STRING, embreeIsaReport().c_str());
 #endif

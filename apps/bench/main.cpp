@@ -200,8 +200,8 @@ int main(int argc, char **argv) {
         for (const mvcl::TriangleMesh &m : scene.meshes) layers |= 1u << std::clamp(m.layer, 0, 31);
         std::printf("model %s: %zu meshes, %zu triangles, %d layers, loaded in %.1f ms\n", opt.model.c_str(),
                     scene.meshes.size(), scene.triangleCount(), std::popcount(layers), secondsSince(loadStart) * 1e3);
-        std::printf("%dx%d primary rays, %d threads, best of %d runs\n", opt.width, opt.height,
-                    opt.threads, opt.repeat);
+        std::printf("%dx%d primary rays, %d threads, best of %d runs, on %s\n", opt.width, opt.height,
+                    opt.threads, opt.repeat, mvcl::bench::cpuModelName().c_str());
 
         // --- Build ---
         mvcl::TracerSettings settings;
