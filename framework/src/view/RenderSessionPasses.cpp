@@ -546,7 +546,12 @@ RenderPassStats RenderSession::Private::renderPass() {
         stats.composeMilliseconds = millisecondsBetween(composeStart, Clock::now());
     }
     if (restartAll || cameraMoved) {
-        restartPixels({0, 0, width(), height()}, nullptr);
+        // resize() has just reset every pixel's samples and estimate: only the tiles' summaries
+        // are left to make.
+        if (restartAll)
+            updateActive({0, 0, width(), height()});
+        else
+            restartPixels({0, 0, width(), height()}, nullptr);
         stats.pixelsRestarted = pixelCount();
         resetTime = Clock::now();
         fullPassPending = true;
