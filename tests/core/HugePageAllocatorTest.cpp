@@ -8,9 +8,11 @@
 using mvcl::detail::HugePageAllocator;
 
 TEST(HugePageAllocator, LargeAndSmallBuffersHoldWhatIsWrittenAndStartZeroed) {
-    // Below, at and above one huge page (2 MiB of floats is 524,288), and one that is not a
-    // multiple of it: each is value-initialised, written through and read back.
-    for (std::size_t n : {std::size_t(1000), std::size_t(524288), std::size_t(524289), std::size_t(3'000'001)}) {
+    // Below and above the 1 MiB from which buffers get huge pages, at and above one huge page
+    // (2 MiB of floats is 524,288), and one that is not a multiple of it: each is
+    // value-initialised, written through and read back.
+    for (std::size_t n : {std::size_t(1000), std::size_t(300'000), std::size_t(524'288), std::size_t(524'289),
+                          std::size_t(3'000'001)}) {
         std::vector<float, HugePageAllocator<float>> v(n);
         ASSERT_EQ(v.size(), n);
         EXPECT_EQ(v.front(), 0.f);
@@ -21,7 +23,7 @@ TEST(HugePageAllocator, LargeAndSmallBuffersHoldWhatIsWrittenAndStartZeroed) {
         EXPECT_EQ(v.back(), -1.f);
 #if defined(__linux__)
         // Large buffers start on a huge page, so that the kernel can back them with huge pages.
-        if (n * sizeof(float) >= (std::size_t(2) << 20)) {
+        if (n * sizeof(float) >= (std::size_t(1) << 20)) {
             EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % (std::uintptr_t(2) << 20), 0u);
         }
 #endif

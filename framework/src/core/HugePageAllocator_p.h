@@ -2,7 +2,7 @@
 // Private: an allocator for the large per-pixel buffers of a render session. A fresh 800 × 600
 // session touches ~20 MB of sums, estimates and priorities in its first pass; in 4 KiB pages
 // that is ~5,000 page faults, which on a virtual machine cost more than the pass's shading
-// (docs/benchmarks.md). Buffers of 2 MiB or more get their own 2 MiB-aligned mapping, marked for
+// (docs/benchmarks.md). Buffers of 1 MiB or more get their own 2 MiB-aligned mapping (rounded up to whole huge pages), marked for
 // transparent huge pages (Linux, where the system allows them on request): a few dozen faults.
 // Smaller buffers, and other systems, use operator new.
 
