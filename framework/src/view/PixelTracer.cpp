@@ -140,6 +140,11 @@ void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &sam
 }
 
 int PixelTracer::blockPolicy(int x0, int y0, int x1, int y1) const {
+    // A map of one mix (no lens on the image) has it at every pixel.
+    if (m_map.mixCount() == 1) {
+        const std::span<const PolicyTerm> terms = m_map.mixTerms(0);
+        return terms.size() == 1 ? int(terms[0].policy) : -1;
+    }
     // Most blocks lie inside one region of the map: one mix for every pixel, compared row by row.
     const uint32_t mix = m_map.mixIndex(x0, y0);
     bool sameMix = true;
