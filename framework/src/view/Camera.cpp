@@ -1,10 +1,17 @@
 #include <mvcl/view/Camera.h>
 
+#include <mvcl/core/Error.h>
+
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace mvcl {
 
@@ -52,6 +59,49 @@ Camera Camera::framing(const Bounds3f &bounds, float verticalFovDegrees, float a
     }
     distance = std::max(distance * 1.08f, 1e-30f);
     return lookAt(center + distance * toEye, center, up, verticalFovDegrees);
+}
+
+void Camera::generateRays(std::span<const glm::vec2> positions, int width, int height, std::span<Ray> rays) const {
+    if (rays.size() < positions.size())
+        throw Error("camera", "generateRays needs room for " + std::to_string(positions.size()) + " rays, not " +
+                                  std::to_string(rays.size()));
+    std::size_t i = 0;
+#if defined(__SSE2__)
+    // generateRay()'s operations in its order, four rays per instruction: every step is an IEEE
+    // operation rounded once (no fused multiply-add, no reciprocal estimate), so the bits match.
+    const float aspect = float(width) / float(height);
+    const float spread = 2.f * m_tanHalfFov / float(height);
+    const __m128 two = _mm_set1_ps(2.f), one = _mm_set1_ps(1.f), minusOne = _mm_set1_ps(-1.f);
+    const __m128 w = _mm_set1_ps(float(width)), h = _mm_set1_ps(float(height));
+    const __m128 tanHalfFov = _mm_set1_ps(m_tanHalfFov), aspects = _mm_set1_ps(aspect);
+    const glm::mat3 &m = m_sceneFromCamera;
+    for (; i + 4 <= positions.size(); i += 4) {
+        const glm::vec2 *p = positions.data() + i;
+        const __m128 x = _mm_setr_ps(p[0].x, p[1].x, p[2].x, p[3].x);
+        const __m128 y = _mm_setr_ps(p[0].y, p[1].y, p[2].y, p[3].y);
+        const __m128 sx =
+            _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(_mm_div_ps(_mm_mul_ps(two, x), w), one), tanHalfFov), aspects);
+        const __m128 sy = _mm_mul_ps(_mm_sub_ps(one, _mm_div_ps(_mm_mul_ps(two, y), h)), tanHalfFov);
+        __m128 d[3];
+        for (int c = 0; c < 3; ++c) // glm's mat3 × vec3: m[0][c]·x + m[1][c]·y + m[2][c]·z, z = −1
+            d[c] = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(m[0][c]), sx), _mm_mul_ps(_mm_set1_ps(m[1][c]), sy)),
+                              _mm_mul_ps(_mm_set1_ps(m[2][c]), minusOne));
+        // glm::normalize: v · (1 / √(dot(v, v))), the dot summed x, y, z.
+        const __m128 lengthSquared =
+            _mm_add_ps(_mm_add_ps(_mm_mul_ps(d[0], d[0]), _mm_mul_ps(d[1], d[1])), _mm_mul_ps(d[2], d[2]));
+        const __m128 inverseLength = _mm_div_ps(one, _mm_sqrt_ps(lengthSquared));
+        alignas(16) float direction[3][4];
+        for (int c = 0; c < 3; ++c) _mm_store_ps(direction[c], _mm_mul_ps(d[c], inverseLength));
+        for (int j = 0; j < 4; ++j) {
+            Ray &ray = rays[i + std::size_t(j)];
+            ray.origin = m_eye;
+            ray.direction = {direction[0][j], direction[1][j], direction[2][j]};
+            ray.coneWidth = 0.f;
+            ray.coneSpread = spread;
+        }
+    }
+#endif
+    for (; i < positions.size(); ++i) rays[i] = generateRay(positions[i].x, positions[i].y, width, height);
 }
 
 void Camera::update() {

@@ -139,29 +139,50 @@ void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &sam
     samples.count = endSample;
 }
 
+int PixelTracer::blockPolicy(int x0, int y0, int x1, int y1) const {
+    // A map of one mix (no lens on the image) has it at every pixel.
+    if (m_map.mixCount() == 1) {
+        const std::span<const PolicyTerm> terms = m_map.mixTerms(0);
+        return terms.size() == 1 ? int(terms[0].policy) : -1;
+    }
+    // Most blocks lie inside one region of the map: one mix for every pixel, compared row by row.
+    const uint32_t mix = m_map.mixIndex(x0, y0);
+    bool sameMix = true;
+    for (int y = y0; y < y1; ++y) {
+        const uint32_t *row = m_map.rowMixIndices(y).data();
+        for (int x = x0; x < x1; ++x) sameMix &= row[x] == mix;
+    }
+    if (sameMix) {
+        const std::span<const PolicyTerm> terms = m_map.mixTerms(mix);
+        return terms.size() == 1 ? int(terms[0].policy) : -1;
+    }
+    // Different mixes may still be the one policy at weight 1.
+    int shared = -1;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            const std::span<const PolicyTerm> terms = m_map.terms(x, y);
+            if (terms.size() != 1 || (shared >= 0 && terms[0].policy != shared)) return -1;
+            shared = terms[0].policy;
+        }
+    return shared;
+}
+
 void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t *endSample,
-                                  PixelSamples *samples) {
+                                  PixelSamples *samples, std::size_t rowStride) {
     const int side = x1 - x0, count = side * (y1 - y0);
-    // Pixel i of the block, row by row (a table, not i / side and i % side: two integer
-    // divisions per pixel and loop showed in the profile).
+    // Pixel i of the block, row by row, and its sums (a table, not i / side and i % side: two
+    // integer divisions per pixel and loop showed in the profile).
     std::array<int, kBlockSide * kBlockSide> xOf, yOf;
+    std::array<PixelSamples *, kBlockSide * kBlockSide> sumsOf;
     for (int y = y0, i = 0; y < y1; ++y)
         for (int x = x0; x < x1; ++x, ++i) {
             xOf[size_t(i)] = x;
             yOf[size_t(i)] = y;
+            sumsOf[size_t(i)] = samples + size_t(y - y0) * rowStride + size_t(x - x0);
         }
-    // The block's one policy, if every pixel has exactly one term and it is the same.
-    int shared = -1;
-    for (int i = 0; i < count; ++i) {
-        const std::span<const PolicyTerm> terms = m_map.terms(xOf[size_t(i)], yOf[size_t(i)]);
-        if (terms.size() != 1 || (shared >= 0 && terms[0].policy != shared)) {
-            shared = -1;
-            break;
-        }
-        shared = terms[0].policy;
-    }
-    if (shared < 0 || count < 2) {
-        for (int i = 0; i < count; ++i) addSamples(xOf[size_t(i)], yOf[size_t(i)], endSample[i], samples[i]);
+    const int shared = count < 2 ? -1 : blockPolicy(x0, y0, x1, y1);
+    if (shared < 0) {
+        for (int i = 0; i < count; ++i) addSamples(xOf[size_t(i)], yOf[size_t(i)], endSample[i], *sumsOf[size_t(i)]);
         return;
     }
     const PixelPolicy &policy = m_map.policy(uint16_t(shared));
@@ -170,34 +191,36 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
     const Tracer &tracer = m_integrator.tracer();
     const int width = m_map.width(), height = m_map.height();
     chargeRun(shared);
-    const uint64_t raysBefore = m_rays.total();
+    uint64_t blockRays = 0;
+    // Each pixel's samples [begin, end) of this call.
+    std::array<uint32_t, kBlockSide * kBlockSide> begin;
     uint32_t first = UINT32_MAX, last = 0;
-    for (int i = 0; i < count; ++i)
-        if (samples[i].count < endSample[i]) {
-            first = std::min(first, samples[i].count);
+    for (int i = 0; i < count; ++i) {
+        begin[size_t(i)] = sumsOf[size_t(i)]->count;
+        if (begin[size_t(i)] < endSample[i]) {
+            first = std::min(first, begin[size_t(i)]);
             last = std::max(last, endSample[i]);
         }
+    }
     // Whether the policy shapes rays (a magnifier): asked once, not per sample (a 3 × 3 compare).
     const bool shaped = policy.isShaped();
-    std::array<Ray, Tracer::kPacketSize> rays;
-    std::array<Hit, Tracer::kPacketSize> hits;
-    std::array<int, Tracer::kPacketSize> pixelOf;
-    std::array<uint32_t, Tracer::kPacketSize> sampleOf;
-    std::array<glm::vec3, Tracer::kPacketSize> values;
-    std::array<RayCounters, Tracer::kPacketSize> laneRays;
+    PacketLanes &l = m_lanes;
     int lanes = 0;
     const auto traceLanes = [&] {
-        const uint32_t found = tracer.closestHits({rays.data(), size_t(lanes)}, query, {hits.data(), size_t(lanes)});
-        std::fill_n(laneRays.begin(), lanes, RayCounters{});
-        m_integrator.radianceFromHits({rays.data(), size_t(lanes)}, {hits.data(), size_t(lanes)}, found, policy.ray,
-                                      plan, {laneRays.data(), size_t(lanes)}, {values.data(), size_t(lanes)});
-        for (int j = 0; j < lanes; ++j) {
-            const glm::vec3 &value = values[size_t(j)];
-            PixelSamples &s = samples[pixelOf[size_t(j)]];
+        const size_t n = size_t(lanes);
+        m_camera.generateRays({l.positions.data(), n}, width, height, {l.rays.data(), n});
+        const uint32_t found = tracer.closestHits({l.rays.data(), n}, query, {l.hits.data(), n});
+        m_integrator.radianceFromHits({l.rays.data(), n}, {l.hits.data(), n}, found, policy.ray, plan,
+                                      {l.counters.data(), n}, {l.values.data(), n});
+        for (size_t j = 0; j < n; ++j) {
+            const glm::vec3 &value = l.values[j];
+            PixelSamples &s = *l.sums[j];
             s.sum += value;
-            if ((sampleOf[size_t(j)] & 1u) == 0) s.evenSum += value;
-            s.rays += uint32_t(laneRays[size_t(j)].total());
-            m_rays += laneRays[size_t(j)];
+            if ((l.sample[j] & 1u) == 0) s.evenSum += value;
+            const uint64_t total = l.counters[j].total(), rays = total - l.totals[j];
+            l.totals[j] = total;
+            s.rays += uint32_t(rays);
+            blockRays += rays;
         }
         lanes = 0;
     };
@@ -207,37 +230,35 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
     // count + 1, …: its lanes come in that order, and packets are summed in the order traced.
     for (uint32_t k = first; k < last; ++k) {
         for (int i = 0; i < count; ++i) {
-            if (k < samples[i].count || k >= endSample[i]) continue;
+            if (k < begin[size_t(i)] || k >= endSample[i]) continue;
             const int x = xOf[size_t(i)], y = yOf[size_t(i)];
             const glm::vec2 position = glm::vec2{float(x), float(y)} + sampleOffset(x, y, k, m_seed);
-            const glm::vec2 p = shaped ? policy.samplePosition(position, width, height) : position;
-            // Member by member: a whole-struct copy of the returned ray read back 16-byte halves
-            // of what was just written 4 and 8 bytes at a time (a store-forwarding stall a ray).
-            const Ray ray = m_camera.generateRay(p.x, p.y, width, height);
-            Ray &lane = rays[size_t(lanes)];
-            lane.origin = ray.origin;
-            lane.direction = ray.direction;
-            lane.coneWidth = ray.coneWidth;
-            lane.coneSpread = ray.coneSpread;
-            pixelOf[size_t(lanes)] = i;
-            sampleOf[size_t(lanes++)] = k;
+            l.positions[size_t(lanes)] = shaped ? policy.samplePosition(position, width, height) : position;
+            l.sums[size_t(lanes)] = sumsOf[size_t(i)];
+            l.sample[size_t(lanes++)] = k;
             if (lanes == Tracer::kPacketSize) traceLanes();
         }
     }
     if (lanes > 0) traceLanes();
-    m_costs[size_t(shared)].rays += m_rays.total() - raysBefore;
+    m_costs[size_t(shared)].rays += blockRays;
     for (int i = 0; i < count; ++i) {
         // As addSamples(): a pixel counts once per call, and only if it took samples.
-        if (samples[i].count >= endSample[i]) continue;
+        if (begin[size_t(i)] >= endSample[i]) continue;
         ++m_costs[size_t(shared)].pixels;
-        m_samples += endSample[i] - samples[i].count;
-        samples[i].count = endSample[i];
+        m_samples += endSample[i] - begin[size_t(i)];
+        sumsOf[size_t(i)]->count = endSample[i];
     }
 }
 
 glm::vec3 PixelTracer::sampleAt(int x, int y, const glm::vec2 &position) {
     m_samples += m_map.terms(x, y).size();
     return traceTerms(x, y, position);
+}
+
+RayCounters PixelTracer::rays() const {
+    RayCounters all = m_rays;
+    for (const RayCounters &lane : m_lanes.counters) all += lane;
+    return all;
 }
 
 void PixelTracer::addCostsTo(std::vector<PolicyCost> &costs) const {

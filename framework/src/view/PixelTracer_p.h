@@ -6,15 +6,19 @@
 
 #include <mvcl/lens/PolicyCost.h>
 #include <mvcl/lens/PolicyMap.h>
+#include <mvcl/tracer/Hit.h>
 #include <mvcl/tracer/IntegratorPlan.h>
 #include <mvcl/tracer/RayCounters.h>
+#include <mvcl/tracer/Tracer.h>
 #include <mvcl/tracer/WhittedIntegrator.h>
 #include <mvcl/view/Camera.h>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -61,18 +65,20 @@ public:
     /// Side of the pixel blocks whose primary rays share a packet (Tracer::kPacketSize = 4 × 4).
     static constexpr int kBlockSide = 4;
     /// addSamples() for each pixel of the block [x0, x1) × [y0, y1) (at most kBlockSide square),
-    /// `endSample` and `samples` one per pixel, row by row. Where every pixel of the block has one
-    /// and the same policy (no feathered edge), sample k of the pixels that take it goes through
-    /// the tracer as one packet of primary rays; otherwise pixel by pixel. Same sums bit for bit
-    /// as addSamples() pixel by pixel.
-    void addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t *endSample, PixelSamples *samples);
+    /// `endSample` one per pixel, row by row; the sums of pixel (x, y) at
+    /// samples[(y − y0) · rowStride + (x − x0)] (the session's own rows: no copies in and out).
+    /// Where every pixel of the block has one and the same policy (no feathered edge), sample k
+    /// of the pixels that take it goes through the tracer as one packet of primary rays;
+    /// otherwise pixel by pixel. Same sums bit for bit as addSamples() pixel by pixel.
+    void addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t *endSample, PixelSamples *samples,
+                         std::size_t rowStride);
     /// One sample through the continuous raster position `position` under the policies of
     /// pixel (x, y) (previews: one ray per block of pixels).
     glm::vec3 sampleAt(int x, int y, const glm::vec2 &position);
 
     /// Call where the policy run ends (end of a tile row) so time is charged to it.
     void endRun();
-    const RayCounters &rays() const { return m_rays; }
+    RayCounters rays() const;
     uint64_t samplesTaken() const { return m_samples; }
     /// Adds this tracer's per-policy costs into `costs` (resized to the map's policy count).
     void addCostsTo(std::vector<PolicyCost> &costs) const;
@@ -81,6 +87,24 @@ private:
     using Clock = std::chrono::steady_clock;
     glm::vec3 traceTerms(int x, int y, const glm::vec2 &position);
     void chargeRun(int policy);
+    /// The one policy of every pixel of the block, or −1 (a feathered edge, or policies differ).
+    int blockPolicy(int x0, int y0, int x1, int y1) const;
+
+    /// A packet of primary rays being filled by addBlockSamples(): kept here, not on the stack
+    /// of each call, so that a block does not construct 16 rays, hits and counters anew.
+    struct PacketLanes {
+        std::array<glm::vec2, Tracer::kPacketSize> positions;
+        std::array<Ray, Tracer::kPacketSize> rays;
+        std::array<Hit, Tracer::kPacketSize> hits;
+        std::array<glm::vec3, Tracer::kPacketSize> values;
+        /// Each lane's rays since the tracer was made: radianceFromHits() adds to them, so
+        /// they are never cleared; a sample's rays are the growth of its lane's total.
+        std::array<RayCounters, Tracer::kPacketSize> counters;
+        std::array<uint64_t, Tracer::kPacketSize> totals{}; ///< counters[j].total() after the last packet
+        std::array<PixelSamples *, Tracer::kPacketSize> sums; ///< the pixel each lane's sample adds to
+        std::array<uint32_t, Tracer::kPacketSize> sample;     ///< the lane's sample index k
+    };
+    PacketLanes m_lanes;
 
     const WhittedIntegrator &m_integrator;
     const Camera &m_camera;

@@ -220,7 +220,7 @@ std::vector<uint32_t> RenderSession::sampleCounts() const {
     return counts;
 }
 
-std::vector<float> RenderSession::errorEstimates() const { return d->errors; }
+std::vector<float> RenderSession::errorEstimates() const { return {d->errors.begin(), d->errors.end()}; }
 
 std::vector<uint32_t> RenderSession::rayCounts() const {
     std::vector<uint32_t> rays(d->samples.size());

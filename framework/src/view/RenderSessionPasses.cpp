@@ -347,14 +347,13 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
             for (int bx = r.x0; bx < r.x1; bx += kSide) {
                 const int bx1 = std::min(bx + kSide, r.x1), by1 = std::min(by + kSide, r.y1);
                 std::array<uint32_t, kSide * kSide> end;
-                std::array<detail::PixelSamples, kSide * kSide> s;
-                int count = 0, taking = 0;
+                uint32_t taking = 0; // bit `count`: the pixel takes samples
+                int count = 0;
                 for (int y = by; y < by1; ++y)
                     for (int x = bx; x < bx1; ++x, ++count) {
                         const size_t i = size_t(y) * size_t(w) + size_t(x);
                         end[size_t(count)] = samplesToTake(i);
-                        s[size_t(count)] = samples[i];
-                        taking += end[size_t(count)] > samples[i].count;
+                        taking |= uint32_t(end[size_t(count)] > samples[i].count) << count;
                     }
                 if (!taking) continue;
                 // An edit cancels between blocks: each pixel gets all of its new samples or none.
@@ -362,15 +361,18 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
                     stopped = true;
                     break;
                 }
-                tracer.addBlockSamples(bx, by, bx1, by1, end.data(), s.data());
+                tracer.addBlockSamples(bx, by, bx1, by1, end.data(), &samples[size_t(by) * size_t(w) + size_t(bx)],
+                                       size_t(w));
                 count = 0;
                 for (int y = by; y < by1; ++y)
                     for (int x = bx; x < bx1; ++x, ++count) {
+                        if (!((taking >> count) & 1u)) continue;
                         const size_t i = size_t(y) * size_t(w) + size_t(x);
-                        if (s[size_t(count)].count == samples[i].count) continue;
-                        samples[i] = s[size_t(count)];
-                        errors[i] = samples[i].relativeError();
-                        display.at(x, y) = samples[i].mean();
+                        const detail::PixelSamples &sums = samples[i];
+                        errors[i] = sums.relativeError();
+                        // One sample's mean is its sum (x / 1 is exact): the division was a
+                        // third of this loop's time in a one-sample pass.
+                        display.at(x, y) = sums.count == 1 ? sums.sum : sums.mean();
                         ++traced;
                     }
             }
@@ -547,7 +549,12 @@ RenderPassStats RenderSession::Private::renderPass() {
         stats.composeMilliseconds = millisecondsBetween(composeStart, Clock::now());
     }
     if (restartAll || cameraMoved) {
-        restartPixels({0, 0, width(), height()}, nullptr);
+        // resize() has just reset every pixel's samples and estimate: only the tiles' summaries
+        // are left to make.
+        if (restartAll)
+            updateActive({0, 0, width(), height()});
+        else
+            restartPixels({0, 0, width(), height()}, nullptr);
         stats.pixelsRestarted = pixelCount();
         resetTime = Clock::now();
         fullPassPending = true;

@@ -12,6 +12,7 @@
 #include <mvcl/tracer/Tracer.h>
 #include <mvcl/tracer/WhittedIntegrator.h>
 
+#include "core/HugePageAllocator_p.h"
 #include "PixelTracer_p.h"
 #include "SessionPolicyDiff_p.h"
 
@@ -108,8 +109,9 @@ struct RenderSession::Private {
     int rightStart = -1; ///< as stagedRightStart, for `lenses`
     int dividerColumn = 0; ///< compare mode: the first pixel column of the right stack
     PolicyMap map{1, 1};
-    std::vector<detail::PixelSamples> samples;
-    std::vector<float> errors;
+    // The per-pixel buffers, the largest a session touches in its first pass: in huge pages.
+    std::vector<detail::PixelSamples, detail::HugePageAllocator<detail::PixelSamples>> samples;
+    std::vector<float, detail::HugePageAllocator<float>> errors;
     /// Per pixel, what one more sample is worth: 0, it wants no more; +∞, it wants them whatever
     /// its estimate ("urgent": below the minimum, or not Adaptive); else (Adaptive) its dilated
     /// estimate e squared over the rays r its n samples cost. With e² ≈ σ²/n, one more sample
@@ -119,7 +121,7 @@ struct RenderSession::Private {
     /// that minimises the summed squared error for a budget of rays (the cost in rays, not in
     /// time, keeps the image independent of timing and thread count). A pixel under a mirror
     /// costs several rays a sample, one on the background one.
-    std::vector<float> priority;
+    std::vector<float, detail::HugePageAllocator<float>> priority;
     std::vector<uint8_t> changed;  ///< scratch: pixels whose policy changed
     int tilesX = 0, tilesY = 0;
     std::vector<uint32_t> tileFewestUrgent; ///< fewest samples of an urgent pixel, or kNoActivePixel

@@ -60,7 +60,7 @@ RenderStats Renderer::render(const Camera &camera, const PolicyMap &policies,
             for (int bx = x0; bx < x1; bx += kSide) {
                 const int bx1 = std::min(bx + kSide, x1), by1 = std::min(by + kSide, y1);
                 std::array<detail::PixelSamples, kSide * kSide> samples{};
-                tracer.addBlockSamples(bx, by, bx1, by1, end.data(), samples.data());
+                tracer.addBlockSamples(bx, by, bx1, by1, end.data(), samples.data(), size_t(bx1 - bx));
                 int i = 0;
                 for (int y = by; y < by1; ++y)
                     for (int x = bx; x < bx1; ++x) target.at(x, y) = samples[size_t(i++)].mean();
