@@ -1,6 +1,7 @@
 #include "HugePageAllocator_p.h"
 
-#include <cstdint>
+#include <algorithm>
+#include <cstdlib>
 #include <new>
 
 #if defined(__linux__)
@@ -15,40 +16,29 @@ constexpr std::size_t kHugePage = std::size_t(2) << 20;
 /// From this size on a buffer gets huge pages: an 800 × 600 image's floats (1.9 MB) are just
 /// below one, and rounding them up costs less than their 470 small pages' faults.
 constexpr std::size_t kLargeBuffer = std::size_t(1) << 20;
+/// Cache-line alignment for every other buffer: no element straddles more lines than it must.
+constexpr std::size_t kLine = 64;
 
-std::size_t roundUpToHugePages(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
+std::size_t roundUp(std::size_t bytes, std::size_t to) { return (bytes + to - 1) / to * to; }
 
 } // namespace
 
 void *allocateLargeBuffer(std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     if (bytes >= kLargeBuffer) {
-        // Map one huge page more than needed and keep the aligned part: the kernel backs only
-        // whole aligned 2 MiB ranges with huge pages.
-        const std::size_t size = roundUpToHugePages(bytes);
-        void *raw = mmap(nullptr, size + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-        if (raw == MAP_FAILED) throw std::bad_alloc();
-        const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(raw);
-        const std::uintptr_t aligned = (begin + kHugePage - 1) / kHugePage * kHugePage;
-        if (aligned > begin) munmap(raw, aligned - begin);
-        if (const std::uintptr_t tail = begin + size + kHugePage - (aligned + size); tail > 0)
-            munmap(reinterpret_cast<void *>(aligned + size), tail);
-        // Advice only: without huge pages the buffer works in small ones.
-        madvise(reinterpret_cast<void *>(aligned), size, MADV_HUGEPAGE);
-        return reinterpret_cast<void *>(aligned);
+        // Whole aligned 2 MiB ranges: the kernel backs only those with huge pages.
+        const std::size_t size = roundUp(bytes, kHugePage);
+        void *p = std::aligned_alloc(kHugePage, size);
+        if (!p) throw std::bad_alloc();
+        madvise(p, size, MADV_HUGEPAGE); // advice only: without huge pages the buffer works in small ones
+        return p;
     }
 #endif
-    return ::operator new(bytes);
+    void *p = std::aligned_alloc(kLine, roundUp(std::max<std::size_t>(bytes, 1), kLine));
+    if (!p) throw std::bad_alloc();
+    return p;
 }
 
-void freeLargeBuffer(void *p, std::size_t bytes) noexcept {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    if (bytes >= kLargeBuffer) {
-        munmap(p, roundUpToHugePages(bytes));
-        return;
-    }
-#endif
-    ::operator delete(p);
-}
+void freeLargeBuffer(void *p) noexcept { std::free(p); }
 
 } // namespace mvcl::detail

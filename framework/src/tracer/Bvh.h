@@ -60,7 +60,8 @@ enum class Pages { HugeWhenLarge, Small };
 
 /// 64-byte aligned memory for node and leaf arrays (a node never straddles more cache lines
 /// than it must), released with AlignedFree. Not initialised. With Pages::HugeWhenLarge, arrays
-/// of several MiB go on transparent huge pages when the system allows it.
+/// of 1 MiB or more go on transparent huge pages when the system allows it, like a render
+/// session's large buffers (allocateLargeBuffer, src/core/HugePageAllocator_p.h).
 void *allocateAligned(std::size_t bytes, Pages pages = Pages::HugeWhenLarge);
 
 /// The build input records. Not a std::vector: they are written by parallel chunks right after

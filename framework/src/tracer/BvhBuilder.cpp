@@ -12,6 +12,7 @@
 #include "Bvh.h"
 #include "BvhBuild.h"
 #include "KernelTables.h"
+#include "core/HugePageAllocator_p.h"
 #include "core/WorkerArena_p.h"
 
 #include <glm/common.hpp>
@@ -39,28 +40,13 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 namespace mvcl::detail {
 
 void AlignedFree::operator()(void *p) const { std::free(p); }
 
 void *allocateAligned(std::size_t bytes, Pages pages) {
-#if defined(__linux__)
-    // Large arrays (build nodes, wide nodes, leaf blocks: megabytes written once, right after
-    // allocation) on transparent huge pages where the system allows them on request: thousands
-    // of 4 KiB first-touch faults were a visible share of the build.
-    constexpr std::size_t kHuge = std::size_t(2) << 20;
-    if (pages == Pages::HugeWhenLarge && bytes >= 2 * kHuge) {
-        const std::size_t size = (bytes + kHuge - 1) / kHuge * kHuge;
-        void *p = std::aligned_alloc(kHuge, size);
-        if (!p) throw std::bad_alloc();
-        madvise(p, size, MADV_HUGEPAGE); // a hint: failure only means small pages
-        return p;
-    }
-#endif
+    if (pages == Pages::HugeWhenLarge) return allocateLargeBuffer(bytes);
     void *p = std::aligned_alloc(64, std::max<std::size_t>(64, (bytes + 63) / 64 * 64));
     if (!p) throw std::bad_alloc();
     return p;
