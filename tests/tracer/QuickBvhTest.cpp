@@ -25,6 +25,10 @@ using namespace mvcl;
 
 namespace {
 
+using test::expectSameHit;
+using test::randomQuery;
+using test::randomUnit;
+
 const std::filesystem::path kModels = std::filesystem::path(MVCL_TEST_DATA_DIR) / "models";
 
 TracerSettings quick(int threads = 0, int maxLeafSize = 4) {
@@ -35,25 +39,17 @@ TracerSettings quick(int threads = 0, int maxLeafSize = 4) {
     return s;
 }
 
-glm::vec3 randomUnit(std::mt19937 &rng) {
-    std::normal_distribution<float> n(0.f, 1.f);
-    for (;;) {
-        const glm::vec3 v{n(rng), n(rng), n(rng)};
-        if (glm::length(v) > 1e-3f) return glm::normalize(v);
-    }
-}
-
-/// Random triangles of mixed sizes over three layers, a few spheres and a plane.
+/// Random triangles of mixed sizes over four layers, a few spheres and a plane.
 Scene makeSoup(int triangles, uint32_t seed) {
     Scene scene;
     scene.materials.resize(1);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> pos(-1.f, 1.f), size(0.f, 1.f);
-    for (int layer = 0; layer < 3; ++layer) {
+    for (int layer = 0; layer < 4; ++layer) {
         TriangleMesh mesh;
         mesh.name = "soup" + std::to_string(layer);
         mesh.layer = layer;
-        for (int i = 0; i < triangles / 3; ++i) {
+        for (int i = 0; i < triangles / 4; ++i) {
             const glm::vec3 c{pos(rng), pos(rng), pos(rng)};
             const float extent = i % 50 == 0 ? 0.8f : 0.05f * size(rng); // some long thin ones
             const uint32_t base = uint32_t(mesh.positions.size());
@@ -66,7 +62,7 @@ Scene makeSoup(int triangles, uint32_t seed) {
         Sphere s;
         s.center = {pos(rng), pos(rng), pos(rng)};
         s.radius = 0.05f + 0.1f * size(rng);
-        s.layer = i % 3;
+        s.layer = i % 4;
         scene.spheres.push_back(s);
     }
     Plane floor;
@@ -75,35 +71,6 @@ Scene makeSoup(int triangles, uint32_t seed) {
     floor.layer = 1;
     scene.planes.push_back(floor);
     return scene;
-}
-
-RayQuery randomQuery(std::mt19937 &rng) {
-    RayQuery q;
-    std::uniform_int_distribution<int> coin(0, 3);
-    std::uniform_real_distribution<float> uni(0.f, 1.f), pos(-1.f, 1.f);
-    if (coin(rng) == 0) q.layerMask = uint32_t(rng()) & 0x7u;
-    if (coin(rng) == 0) {
-        q.tMin = 2.f * uni(rng);
-        q.tMax = q.tMin + 2.f * uni(rng);
-    }
-    if (coin(rng) == 0) {
-        const glm::vec3 a{pos(rng), pos(rng), pos(rng)};
-        q.addClip(ClipVolume::box(a, a + glm::vec3{uni(rng), uni(rng), uni(rng)},
-                                  coin(rng) % 2 ? ClipVolume::Keep::Inside : ClipVolume::Keep::Outside));
-    }
-    return q;
-}
-
-void expectSameHit(bool foundA, const Hit &a, bool foundB, const Hit &b, const std::string &what) {
-    ASSERT_EQ(foundA, foundB) << what;
-    if (!foundA) return;
-    EXPECT_EQ(std::bit_cast<uint32_t>(a.t), std::bit_cast<uint32_t>(b.t)) << what;
-    EXPECT_EQ(a.kind, b.kind) << what;
-    EXPECT_EQ(a.geometry, b.geometry) << what;
-    EXPECT_EQ(a.primitive, b.primitive) << what;
-    EXPECT_EQ(std::bit_cast<uint32_t>(a.u), std::bit_cast<uint32_t>(b.u)) << what;
-    EXPECT_EQ(std::bit_cast<uint32_t>(a.v), std::bit_cast<uint32_t>(b.v)) << what;
-    EXPECT_EQ(a.layer, b.layer) << what;
 }
 
 /// Random rays from inside and around the scene under random queries: closest and any hits of

@@ -49,16 +49,6 @@ Scene relayered(const Scene &scene) {
     return s;
 }
 
-void expectSameHit(bool foundA, const Hit &a, bool foundB, const Hit &b) {
-    ASSERT_EQ(foundA, foundB);
-    if (!foundA) return;
-    EXPECT_EQ(a.t, b.t);
-    EXPECT_EQ(a.kind, b.kind);
-    EXPECT_EQ(a.layer, b.layer);
-    EXPECT_EQ(a.geometry, b.geometry);
-    EXPECT_EQ(a.primitive, b.primitive);
-}
-
 } // namespace
 
 TEST(TracerRelayer, AnswersAsAFreshBuildOverTheNewLayers) {
@@ -82,7 +72,7 @@ TEST(TracerRelayer, AnswersAsAFreshBuildOverTheNewLayers) {
         Hit a, b;
         const bool foundA = reused.closestHit({origin, direction}, query, a);
         const bool foundB = fresh.closestHit({origin, direction}, query, b);
-        expectSameHit(foundA, a, foundB, b);
+        test::expectSameHit(foundA, a, foundB, b, "ray " + std::to_string(i));
         hits += foundA;
         // The same ray with all layers hits, but not with this mask: the masks were refreshed.
         Hit any;
@@ -114,7 +104,7 @@ TEST(TracerRelayer, PacketQueriesAgree) {
         const uint32_t foundB = fresh.closestHits(rays, query, b);
         ASSERT_EQ(foundA, foundB);
         for (std::size_t k = 0; k < rays.size(); ++k)
-            expectSameHit((foundA >> k) & 1u, a[k], (foundB >> k) & 1u, b[k]);
+            test::expectSameHit((foundA >> k) & 1u, a[k], (foundB >> k) & 1u, b[k], "packet lane " + std::to_string(k));
         EXPECT_EQ(reused.anyHits(rays, query), fresh.anyHits(rays, query));
     }
 }

@@ -22,16 +22,11 @@
 namespace mvcl {
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
+using test::expectSameHit;
+using test::randomQuery;
+using test::randomUnit;
 
-glm::vec3 randomUnit(std::mt19937 &rng) {
-    std::normal_distribution<float> n(0.f, 1.f);
-    for (;;) {
-        const glm::vec3 v{n(rng), n(rng), n(rng)};
-        const float len = glm::length(v);
-        if (len > 1e-3f) return v / len;
-    }
-}
+constexpr float kInf = std::numeric_limits<float>::infinity();
 
 /// Random triangles in [-1, 1]³ plus exact duplicates, axis-aligned and oblique coplanar sets,
 /// spheres and a floor plane, spread over four layers.
@@ -100,42 +95,6 @@ Scene makeSoup(int triangles, uint32_t seed) {
 Ray randomRay(std::mt19937 &rng, float extent = 1.5f) {
     std::uniform_real_distribution<float> pos(-extent, extent);
     return Ray{{pos(rng), pos(rng), pos(rng)}, randomUnit(rng)};
-}
-
-/// Bitwise equality of two hits (t compared as bits so −0/NaN subtleties cannot hide).
-void expectSameHit(bool foundA, const Hit &a, bool foundB, const Hit &b, const std::string &what) {
-    ASSERT_EQ(foundA, foundB) << what;
-    if (!foundA) return;
-    EXPECT_EQ(std::bit_cast<uint32_t>(a.t), std::bit_cast<uint32_t>(b.t)) << what << " " << a.t << " vs " << b.t;
-    EXPECT_EQ(a.kind, b.kind) << what;
-    EXPECT_EQ(a.geometry, b.geometry) << what;
-    EXPECT_EQ(a.primitive, b.primitive) << what;
-    EXPECT_EQ(std::bit_cast<uint32_t>(a.u), std::bit_cast<uint32_t>(b.u)) << what;
-    EXPECT_EQ(std::bit_cast<uint32_t>(a.v), std::bit_cast<uint32_t>(b.v)) << what;
-    EXPECT_EQ(a.layer, b.layer) << what;
-}
-
-RayQuery randomQuery(std::mt19937 &rng) {
-    RayQuery q;
-    std::uniform_int_distribution<int> coin(0, 3);
-    std::uniform_real_distribution<float> uni(0.f, 1.f), pos(-1.f, 1.f);
-    if (coin(rng) == 0) q.layerMask = uint32_t(rng()) & 0xfu;
-    if (coin(rng) == 0) {
-        q.tMin = 2.f * uni(rng);
-        q.tMax = q.tMin + 2.f * uni(rng);
-    }
-    const int clips = coin(rng) == 0 ? 1 + coin(rng) % 3 : 0;
-    for (int i = 0; i < clips; ++i) {
-        const int shape = coin(rng) % 3;
-        const ClipVolume::Keep keep = coin(rng) % 2 ? ClipVolume::Keep::Inside : ClipVolume::Keep::Outside;
-        const glm::vec3 a{pos(rng), pos(rng), pos(rng)};
-        const glm::vec3 b = a + glm::vec3{uni(rng), uni(rng), uni(rng)};
-        const float radius = uni(rng);
-        if (shape == 0) q.addClip(ClipVolume::box(a, b, keep));
-        if (shape == 1) q.addClip(ClipVolume::sphere(a, radius, keep));
-        if (shape == 2) q.addClip(ClipVolume::halfSpace(randomUnit(rng), radius, keep));
-    }
-    return q;
 }
 
 TEST(Tracer, BuildStatsLeaveOutDegenerateGeometry) {

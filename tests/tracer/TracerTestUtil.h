@@ -12,13 +12,63 @@
 
 #include <glm/vec3.hpp>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace mvcl::test {
+
+/// A uniformly random unit vector.
+inline glm::vec3 randomUnit(std::mt19937 &rng) {
+    std::normal_distribution<float> n(0.f, 1.f);
+    for (;;) {
+        const glm::vec3 v{n(rng), n(rng), n(rng)};
+        const float len = glm::length(v);
+        if (len > 1e-3f) return v / len;
+    }
+}
+
+/// Bitwise equality of two hits (t compared as bits so −0/NaN subtleties cannot hide).
+inline void expectSameHit(bool foundA, const Hit &a, bool foundB, const Hit &b, const std::string &what) {
+    ASSERT_EQ(foundA, foundB) << what;
+    if (!foundA) return;
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.t), std::bit_cast<uint32_t>(b.t)) << what << " " << a.t << " vs " << b.t;
+    EXPECT_EQ(a.kind, b.kind) << what;
+    EXPECT_EQ(a.geometry, b.geometry) << what;
+    EXPECT_EQ(a.primitive, b.primitive) << what;
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.u), std::bit_cast<uint32_t>(b.u)) << what;
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.v), std::bit_cast<uint32_t>(b.v)) << what;
+    EXPECT_EQ(a.layer, b.layer) << what;
+}
+
+/// A query with, at random, a layer mask over four layers, a distance window and up to three
+/// clip volumes (boxes, spheres, half-spaces; keep inside or outside) in [−1, 1]³.
+inline RayQuery randomQuery(std::mt19937 &rng) {
+    RayQuery q;
+    std::uniform_int_distribution<int> coin(0, 3);
+    std::uniform_real_distribution<float> uni(0.f, 1.f), pos(-1.f, 1.f);
+    if (coin(rng) == 0) q.layerMask = uint32_t(rng()) & 0xfu;
+    if (coin(rng) == 0) {
+        q.tMin = 2.f * uni(rng);
+        q.tMax = q.tMin + 2.f * uni(rng);
+    }
+    const int clips = coin(rng) == 0 ? 1 + coin(rng) % 3 : 0;
+    for (int i = 0; i < clips; ++i) {
+        const int shape = coin(rng) % 3;
+        const ClipVolume::Keep keep = coin(rng) % 2 ? ClipVolume::Keep::Inside : ClipVolume::Keep::Outside;
+        const glm::vec3 a{pos(rng), pos(rng), pos(rng)};
+        const glm::vec3 b = a + glm::vec3{uni(rng), uni(rng), uni(rng)};
+        const float radius = uni(rng);
+        if (shape == 0) q.addClip(ClipVolume::box(a, b, keep));
+        if (shape == 1) q.addClip(ClipVolume::sphere(a, radius, keep));
+        if (shape == 2) q.addClip(ClipVolume::halfSpace(randomUnit(rng), radius, keep));
+    }
+    return q;
+}
 
 /// Closed UV sphere: `rings` latitude bands × `segments` longitudes, one vertex per pole.
 /// Positions are computed in double around the origin and then offset by `center` in double, so a

@@ -163,7 +163,8 @@ struct Binner {
 };
 
 /// The build records of `prims` (their boxes, ids and layer bits, in the same order) and the
-/// bounds of them all: the first pass of both builders.
+/// bounds of them all: the first pass of both builders. Throws mvcl::Error("tracer", ...) for
+/// more primitives than a leaf's index can address.
 struct BuildPrims {
     std::unique_ptr<BuildPrim[], AlignedFree> prims;
     RangeBounds bounds;

@@ -339,6 +339,8 @@ std::unique_ptr<BvhNode[], AlignedFree> allocateNodes(std::size_t count, Pages p
 
 BuildPrims makeBuildPrims(const PrimArray &prims, int threads, Pages pages) {
     const std::size_t n = prims.size();
+    if (n >= (std::size_t(1) << (BvhNode::kCountShift - 1)))
+        throw Error("tracer", "too many primitives for the BVH (" + std::to_string(n) + ")");
     BuildPrims out;
     // Not value-initialised: the chunks below write every record.
     out.prims.reset(static_cast<BuildPrim *>(allocateAligned(std::max<std::size_t>(1, n) * sizeof(BuildPrim), pages)));
@@ -383,9 +385,6 @@ Bvh buildBvh(BvhBuildInput input) {
     Bvh bvh;
     const std::size_t n = input.prims.size();
     if (n == 0) return bvh;
-    if (n >= (std::size_t(1) << (BvhNode::kCountShift - 1)))
-        throw Error("tracer", "too many primitives for the BVH (" + std::to_string(n) + ")");
-
     const BuildPrims boxes = makeBuildPrims(input.prims, input.threads, input.pages);
     BuildPrim *const build = boxes.prims.get();
     const RangeBounds &rootBounds = boxes.bounds;

@@ -11,7 +11,6 @@
 #include "BvhBuild.h"
 #include "core/WorkerArena_p.h"
 
-#include <mvcl/core/Error.h>
 #include <mvcl/core/WorkerPool.h>
 
 #include <tbb/parallel_invoke.h>
@@ -22,7 +21,6 @@
 #include <bit>
 #include <memory>
 #include <cmath>
-#include <string>
 #include <utility>
 #include <vector>
 
@@ -159,9 +157,6 @@ Bvh buildMortonBvh(BvhBuildInput input) {
     Bvh bvh;
     const std::size_t n = input.prims.size();
     if (n == 0) return bvh;
-    if (n >= (std::size_t(1) << (BvhNode::kCountShift - 1)))
-        throw Error("tracer", "too many primitives for the BVH (" + std::to_string(n) + ")");
-
     const BuildPrims boxes = makeBuildPrims(input.prims, input.threads, input.pages);
     // The centroids' grid, with the binning's guard against extents that overflow or vanish
     // (such an axis contributes no bits: its primitives are told apart by the other axes).
