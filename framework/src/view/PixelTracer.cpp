@@ -4,8 +4,8 @@
 #include <mvcl/tracer/Tracer.h>
 
 #include <algorithm>
-#include <bit>
 #include <array>
+#include <bit>
 #include <climits>
 #include <cmath>
 #include <cstdint>
