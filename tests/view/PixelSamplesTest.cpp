@@ -49,6 +49,19 @@ TEST(PixelSamplesTest, RelativeErrorIsTheStandardErrorOverTheSquareRootOfBrightn
     EXPECT_NEAR(s.mean().x, 2.0f / 6.0f, 1e-6f);
 }
 
+TEST(PixelSamplesTest, RelativeErrorKeepsTheEstimateOneLevelDown) {
+    // Eight samples whose halves agree (means 0.5 and 0.5): the blocks alone say no error. One
+    // level down, the first four's halves (0.7 and 0.3) disagree: the variance of a 4-sample
+    // mean from them, 0.4² / 4, scaled to 8 samples as 1/n, is what the pixel reports.
+    const PixelSamples s = samplesOf({0.9f, 0.5f, 0.1f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f});
+    EXPECT_NEAR(s.relativeMse(), 0.0, 1e-9) << "the image's estimate stays the blocks' own";
+    const double sigma = std::sqrt(0.4 * 0.4 / 4.0 * 4.0 / 8.0);
+    EXPECT_NEAR(s.relativeError(), 3.0 * sigma / std::sqrt(1e-4 + 1.5), 1e-6);
+    // Where the blocks see more than the earlier look, theirs is kept.
+    const PixelSamples later = samplesOf({0.5f, 0.5f, 0.5f, 0.5f, 0.9f, 0.9f, 0.9f, 0.9f});
+    EXPECT_NEAR(later.relativeError(), 3.0 * 0.4 * 0.5 / std::sqrt(1e-4 + 2.1), 1e-6);
+}
+
 TEST(PixelSamplesTest, NoEstimateBelowTwoSamples) {
     const PixelSamples one = samplesOf({0.5f});
     EXPECT_EQ(one.relativeError(), INFINITY);

@@ -54,10 +54,22 @@ glm::vec3 PixelSamples::blockVariance() const {
     return d * d * (a * b / (n * n));
 }
 
+glm::vec3 PixelSamples::earlierBlockVariance() const {
+    const uint32_t power = uint32_t(1) << (31 - std::countl_zero(count));
+    const bool halves = power == count;
+    const uint32_t p = halves ? power / 2 : power;
+    const glm::vec3 whole = halves ? halfPrefixSum : prefixSum, half = halves ? quarterPrefixSum : halfPrefixSum;
+    const float h = float(p / 2);
+    const glm::vec3 d = half / h - (whole - half) / h;
+    // (h·h / p²) = 1/4: the variance of the mean of p samples from its halves, then × p/n.
+    return d * d * (0.25f * float(p) / float(count));
+}
+
 float PixelSamples::relativeError() const {
     if (count < 2) return INFINITY;
     const glm::vec3 all = sum / float(count);
-    const glm::vec3 sigma = glm::sqrt(blockVariance());
+    const glm::vec3 variance = count >= 4 ? glm::max(blockVariance(), earlierBlockVariance()) : blockVariance();
+    const glm::vec3 sigma = glm::sqrt(variance);
     return (sigma.x + sigma.y + sigma.z) / std::sqrt(1e-4f + std::max(all.x + all.y + all.z, 0.f));
 }
 

@@ -36,9 +36,9 @@ glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed);
 /// difference, and the estimate came out 1.5–9× the true error (docs/benchmarks.md).
 struct PixelSamples {
     glm::vec3 sum{0.f};
-    /// Sums of the first 2^m samples and of the first 2^(m−1), 2^m the largest power of two
-    /// not above count (0 while there is none).
-    glm::vec3 prefixSum{0.f}, halfPrefixSum{0.f};
+    /// Sums of the first 2^m, 2^(m−1) and 2^(m−2) samples, 2^m the largest power of two not
+    /// above count (0 while there is none).
+    glm::vec3 prefixSum{0.f}, halfPrefixSum{0.f}, quarterPrefixSum{0.f};
     uint32_t count = 0;
     uint32_t rays = 0; ///< rays traced for these samples: what one more sample costs, on average
 
@@ -48,13 +48,20 @@ struct PixelSamples {
     void add(uint32_t k, const glm::vec3 &value) {
         sum += value;
         if ((k & (k + 1)) == 0) { // now k + 1 samples, a power of two
+            quarterPrefixSum = halfPrefixSum;
             halfPrefixSum = prefixSum;
             prefixSum = sum;
         }
     }
     /// Σ_c σ_c / √(ε + I_r + I_g + I_b), I the mean and σ_c² = (A_c − B_c)²·ab/n² per channel,
     /// A the mean of the first block (a samples), B of the second (b); +∞ with fewer than two
-    /// samples. The standard error of the mean, relative to its brightness.
+    /// samples. The standard error of the mean, relative to its brightness. What adaptive
+    /// sampling decides by, so from 4 samples on σ_c² is at least the same estimate one level
+    /// down (the two halves of the first p samples, p the largest power of two below the count)
+    /// times p/n: one difference of two means is a single degree of freedom, below a tenth of
+    /// its expectation a quarter of the time, and a pixel whose estimate happened to come out
+    /// low would wait behind the others with its error. Scaling as 1/n, a Monte Carlo rate,
+    /// the earlier look only ever raises the estimate of a pixel whose error falls faster.
     float relativeError() const;
     /// The squared error of mean() relative to its value, as the image's relMSE counts it: per
     /// channel σ_c² over (mean² + 0.01), averaged over the channels; σ as in relativeError().
@@ -64,6 +71,9 @@ struct PixelSamples {
 private:
     /// Per channel, the variance of the mean from the two blocks (count ≥ 2).
     glm::vec3 blockVariance() const;
+    /// blockVariance() as it was at the last power of two below count, scaled to count
+    /// samples as 1/n (count ≥ 4).
+    glm::vec3 earlierBlockVariance() const;
 };
 
 /// Traces samples of pixels under a policy map and charges rays, pixels and time to its
