@@ -45,24 +45,33 @@ glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed) {
     return {std::min(float(u - std::floor(u)), below1), std::min(float(v - std::floor(v)), below1)};
 }
 
+namespace {
+
+/// Per channel, the variance of the mean of a + b samples from the sums of two groups of them
+/// (a and b samples), were the groups independent: (A − B)²·ab/(a + b)².
+glm::vec3 varianceFromGroups(const glm::vec3 &sumA, float a, const glm::vec3 &sumB, float b) {
+    const glm::vec3 d = sumA / a - sumB / b;
+    return d * d * (a * b / ((a + b) * (a + b)));
+}
+
+} // namespace
+
 glm::vec3 PixelSamples::blockVariance() const {
-    const uint32_t power = uint32_t(1) << (31 - std::countl_zero(count));
+    // The first 2^m samples and the rest; at a power of two, its two halves.
+    const uint32_t power = std::bit_floor(count);
     const bool halves = power == count;
-    const float a = float(halves ? power / 2 : power), b = float(count) - a, n = float(count);
     const glm::vec3 first = halves ? halfPrefixSum : prefixSum;
-    const glm::vec3 d = first / a - (sum - first) / b;
-    return d * d * (a * b / (n * n));
+    const uint32_t a = halves ? power / 2 : power;
+    return varianceFromGroups(first, float(a), sum - first, float(count - a));
 }
 
 glm::vec3 PixelSamples::earlierBlockVariance() const {
-    const uint32_t power = uint32_t(1) << (31 - std::countl_zero(count));
+    // The first p samples (p the last power of two below count) from their halves, then × p/n.
+    const uint32_t power = std::bit_floor(count);
     const bool halves = power == count;
     const uint32_t p = halves ? power / 2 : power;
     const glm::vec3 whole = halves ? halfPrefixSum : prefixSum, half = halves ? quarterPrefixSum : halfPrefixSum;
-    const float h = float(p / 2);
-    const glm::vec3 d = half / h - (whole - half) / h;
-    // (h·h / p²) = 1/4: the variance of the mean of p samples from its halves, then × p/n.
-    return d * d * (0.25f * float(p) / float(count));
+    return varianceFromGroups(half, float(p / 2), whole - half, float(p / 2)) * (float(p) / float(count));
 }
 
 float PixelSamples::relativeError() const {
