@@ -483,6 +483,32 @@ void printEstimateAgainstError(const std::vector<Measurement> &rows, const Refer
     }
 }
 
+/// Per seed: where adaptive first reaches that seed's uniform relMSE at `finalSpp`, in time and
+/// in rays, each over uniform's, and its mean spp there. Rays show what the schedule buys,
+/// apart from what a ray costs: uniform's rays are mostly cheap misses of the background,
+/// adaptive's mostly hit the model.
+void printPerSeedRatios(const std::vector<Measurement> &rows, int finalSpp) {
+    std::printf("\nper seed: adaptive at the seed's uniform final relMSE, time and rays over uniform's, mean spp\n");
+    for (const Measurement &u : rows) {
+        if (u.method != "uniform" || u.step != finalSpp) continue;
+        Curve byTime, byRays, bySpp;
+        for (const Measurement &m : rows)
+            if (m.method == "adaptive" && m.seed == u.seed) {
+                byTime.push_back({m.seconds, m.relMse});
+                byRays.push_back({double(m.rays), m.relMse});
+                bySpp.push_back({m.meanSpp, m.relMse});
+            }
+        const std::optional<Crossing> time = firstCrossing(byTime, u.relMse), rays = firstCrossing(byRays, u.relMse),
+                                      spp = firstCrossing(bySpp, u.relMse);
+        if (!time || !rays || !spp) {
+            std::printf("seed %u: never reaches it\n", u.seed);
+            continue;
+        }
+        std::printf("seed %u: R %.3f in time, %.3f in rays, %.1f spp\n", u.seed, time->seconds / u.seconds,
+                    rays->seconds / double(u.rays), spp->seconds);
+    }
+}
+
 Curve relMseCurve(const std::vector<Measurement> &mean) {
     Curve c;
     for (const Measurement &m : mean) c.push_back({m.seconds, m.relMse});
@@ -682,6 +708,7 @@ int runConvergenceBench(int argc, char **argv) {
                         finalUniform->relMse, nearly.c_str());
         }
         std::printf("\n");
+        printPerSeedRatios(rows, uniformFinalSpp);
         return 0;
     } catch (const Error &e) {
         std::fprintf(stderr, "mvcl-bench: %s\n", e.what());

@@ -349,13 +349,13 @@ double relativeMse(const Framebuffer &image, const Framebuffer &reference) {
     return sum / double(3 * image.pixels().size());
 }
 
-TEST_F(RenderSessionTest, EstimatedRelativeMseIsAnUpperEstimateOfTheTrueError) {
-    // The estimate from each pixel's even and odd samples against the error measured from a
-    // reference of 1024 samples with another seed (its own error, 1/1024 of a sample's
-    // variance, is small beside 32 samples'), on the default scene: glass, a mirror, edges. The
-    // halves are interleaved points of one R2 sequence, whose errors partly cancel in the mean:
-    // from 4 samples on the estimate lies above the true error (1.9–4.7× here); at 2 samples
-    // (the pixel centre and one rotated point, nearly independent) it is about the error.
+TEST_F(RenderSessionTest, EstimatedRelativeMseFollowsTheTrueError) {
+    // The estimate from two contiguous blocks of each pixel's samples against the error measured
+    // from a reference of 1024 samples with another seed (its own error, 1/1024 of a sample's
+    // variance, is small beside 32 samples'), on the default scene: glass, a mirror, edges.
+    // Measured here: 0.76, 1.49, 2.42, 1.09, 1.16× at 2, 4, 8, 16, 32 samples (the even/odd
+    // halves it replaced gave 1.9–4.7× from 4 samples on: interleaved points of one R2 sequence
+    // cancel each other's errors in the mean but not in their difference).
     const Scene scene = loadScene("builtin:cube-in-cube");
     const Tracer tracer(scene);
     const Camera camera = Camera::fromDesc(scene.cameras.front());
@@ -377,8 +377,8 @@ TEST_F(RenderSessionTest, EstimatedRelativeMseIsAnUpperEstimateOfTheTrueError) {
         ASSERT_TRUE(c.estimatedRelativeMse.has_value());
         const double measured = relativeMse(session.image(), truth);
         const double estimated = *c.estimatedRelativeMse;
-        EXPECT_GT(estimated, (c.minSamples == 2 ? 0.7 : 1.0) * measured) << c.minSamples << " samples";
-        EXPECT_LT(estimated, 6.0 * measured) << c.minSamples << " samples";
+        EXPECT_GT(estimated, 0.6 * measured) << c.minSamples << " samples";
+        EXPECT_LT(estimated, (c.minSamples >= 16 ? 1.5 : 3.0) * measured) << c.minSamples << " samples";
         ++checked;
     }
     EXPECT_EQ(checked, 5); // 2, 4, 8, 16, 32 samples

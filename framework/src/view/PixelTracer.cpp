@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -34,7 +35,7 @@ constexpr double kR2b = 0.56984029099805326591;
 glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed) {
     if (k == 0) return {0.5f, 0.5f};
     // One sequence for all samples, not two independently rotated halves: the halves would make
-    // the even/odd error estimate exact in expectation, but cost 20–100 % more squared error at
+    // an even/odd error estimate exact in expectation, but cost 20–100 % more squared error at
     // the same sample count (measured, docs/benchmarks.md), which every image would pay.
     const uint32_t key = hash32(uint32_t(y) * 0x9e3779b1u ^ uint32_t(x) ^ hash32(seed));
     const double u = 0.5 + unitDouble(key) + double(k) * kR2a;
@@ -44,21 +45,47 @@ glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed) {
     return {std::min(float(u - std::floor(u)), below1), std::min(float(v - std::floor(v)), below1)};
 }
 
+namespace {
+
+/// Per channel, the variance of the mean of a + b samples from the sums of two groups of them
+/// (a and b samples), were the groups independent: (A − B)²·ab/(a + b)².
+glm::vec3 varianceFromGroups(const glm::vec3 &sumA, float a, const glm::vec3 &sumB, float b) {
+    const glm::vec3 d = sumA / a - sumB / b;
+    return d * d * (a * b / ((a + b) * (a + b)));
+}
+
+} // namespace
+
+glm::vec3 PixelSamples::blockVariance() const {
+    // The first 2^m samples and the rest; at a power of two, its two halves.
+    const uint32_t power = std::bit_floor(count);
+    const bool halves = power == count;
+    const glm::vec3 first = halves ? halfPrefixSum : prefixSum;
+    const uint32_t a = halves ? power / 2 : power;
+    return varianceFromGroups(first, float(a), sum - first, float(count - a));
+}
+
+glm::vec3 PixelSamples::earlierBlockVariance() const {
+    // The first p samples (p the last power of two below count) from their halves, then × p/n.
+    const uint32_t power = std::bit_floor(count);
+    const bool halves = power == count;
+    const uint32_t p = halves ? power / 2 : power;
+    const glm::vec3 whole = halves ? halfPrefixSum : prefixSum, half = halves ? quarterPrefixSum : halfPrefixSum;
+    return varianceFromGroups(half, float(p / 2), whole - half, float(p / 2)) * (float(p) / float(count));
+}
+
 float PixelSamples::relativeError() const {
     if (count < 2) return INFINITY;
     const glm::vec3 all = sum / float(count);
-    const glm::vec3 even = evenSum / float((count + 1) / 2);
-    const glm::vec3 d = glm::abs(all - even);
-    return (d.x + d.y + d.z) / std::sqrt(1e-4f + std::max(all.x + all.y + all.z, 0.f));
+    const glm::vec3 variance = count >= 4 ? glm::max(blockVariance(), earlierBlockVariance()) : blockVariance();
+    const glm::vec3 sigma = glm::sqrt(variance);
+    return (sigma.x + sigma.y + sigma.z) / std::sqrt(1e-4f + std::max(all.x + all.y + all.z, 0.f));
 }
 
 float PixelSamples::relativeMse() const {
     if (count < 2) return 0.f;
-    const float evens = float((count + 1) / 2), odds = float(count / 2), n = float(count);
-    const glm::vec3 all = sum / n;
-    const glm::vec3 d = evenSum / evens - (sum - evenSum) / odds;
-    const glm::vec3 variance = d * d * (evens * odds / (n * n));
-    const glm::vec3 relative = variance / (all * all + 0.01f);
+    const glm::vec3 all = sum / float(count);
+    const glm::vec3 relative = blockVariance() / (all * all + 0.01f);
     return (relative.x + relative.y + relative.z) / 3.f;
 }
 
@@ -116,8 +143,7 @@ void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &sam
             const glm::vec2 p = policy.samplePosition(pixel + sampleOffset(x, y, k, m_seed), width, height);
             const glm::vec3 value =
                 m_integrator.radiance(m_camera.generateRay(p.x, p.y, width, height), policy.ray, plan, m_rays);
-            samples.sum += value;
-            if ((k & 1u) == 0) samples.evenSum += value;
+            samples.add(k, value);
         }
         m_costs[index].rays += m_rays.total() - raysBefore;
         samples.rays += uint32_t(m_rays.total() - raysBefore);
@@ -130,8 +156,7 @@ void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &sam
     const uint64_t raysBefore = m_rays.total();
     for (uint32_t k = samples.count; k < endSample; ++k) {
         const glm::vec3 value = traceTerms(x, y, pixel + sampleOffset(x, y, k, m_seed));
-        samples.sum += value;
-        if ((k & 1u) == 0) samples.evenSum += value;
+        samples.add(k, value);
     }
     samples.rays += uint32_t(m_rays.total() - raysBefore);
     for (const PolicyTerm &term : terms) ++m_costs[term.policy].pixels;
@@ -215,8 +240,7 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
         for (size_t j = 0; j < n; ++j) {
             const glm::vec3 &value = l.values[j];
             PixelSamples &s = *l.sums[j];
-            s.sum += value;
-            if ((l.sample[j] & 1u) == 0) s.evenSum += value;
+            s.add(l.sample[j], value);
             const uint64_t total = l.counters[j].total(), rays = total - l.totals[j];
             l.totals[j] = total;
             s.rays += uint32_t(rays);

@@ -30,26 +30,54 @@ namespace mvcl::detail {
 /// progressive rendering needs) rotated per pixel by a hash of (x, y, seed).
 glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed);
 
-/// Running sums of one pixel's samples. The even-numbered samples are also summed on their
-/// own: the even and the odd samples are two half-images, whose difference estimates the
-/// pixel's error (adaptive sampling, and the image's estimated relMSE).
+/// Running sums of one pixel's samples, and two contiguous blocks of them whose difference
+/// estimates the pixel's error (adaptive sampling, and the image's estimated relMSE): the first
+/// 2^m samples and the rest, 2^m the largest power of two below the count (at a power of two,
+/// the two halves). Each block is a run of consecutive points of the pixel's R2 sequence, itself
+/// well spread; the blocks' errors are nearly independent, so their difference measures the
+/// error of the mean, cancellation included. Interleaved halves (even and odd samples) would
+/// not: their points fill each other's gaps, their errors cancel in the mean but not in the
+/// difference, and the estimate came out 1.5–9× the true error (docs/benchmarks.md).
 struct PixelSamples {
     glm::vec3 sum{0.f};
-    glm::vec3 evenSum{0.f};
+    /// Sums of the first 2^m, 2^(m−1) and 2^(m−2) samples, 2^m the largest power of two not
+    /// above count (0 while there is none).
+    glm::vec3 prefixSum{0.f}, halfPrefixSum{0.f}, quarterPrefixSum{0.f};
     uint32_t count = 0;
     uint32_t rays = 0; ///< rays traced for these samples: what one more sample costs, on average
 
     glm::vec3 mean() const { return count ? sum / float(count) : glm::vec3(0.f); }
-    /// |I − A|₁ / √(ε + I_r + I_g + I_b), I the mean of all samples, A of the even ones;
-    /// +∞ with fewer than two samples.
+    /// Adds the value of sample k to the sums; samples come in order (k = 0, 1, …, as
+    /// count counts them), and advancing count is the caller's.
+    void add(uint32_t k, const glm::vec3 &value) {
+        sum += value;
+        if ((k & (k + 1)) == 0) { // now k + 1 samples, a power of two
+            quarterPrefixSum = halfPrefixSum;
+            halfPrefixSum = prefixSum;
+            prefixSum = sum;
+        }
+    }
+    /// Σ_c σ_c / √(ε + I_r + I_g + I_b), I the mean and σ_c² = (A_c − B_c)²·ab/n² per channel,
+    /// A the mean of the first block (a samples), B of the second (b); +∞ with fewer than two
+    /// samples. The standard error of the mean, relative to its brightness. What adaptive
+    /// sampling decides by, so from 4 samples on σ_c² is at least the same estimate one level
+    /// down (the two halves of the first p samples, p the largest power of two below the count)
+    /// times p/n: one difference of two means is a single degree of freedom, below a tenth of
+    /// its expectation a quarter of the time, and a pixel whose estimate happened to come out
+    /// low would wait behind the others with its error. Scaling as 1/n, a Monte Carlo rate,
+    /// the earlier look only ever raises the estimate of a pixel whose error falls faster.
     float relativeError() const;
-    /// The squared error of mean() relative to its value, as the image's relMSE counts it,
-    /// estimated from the even samples' mean E (a of them) and the odd ones' O (b): per channel
-    /// (E − O)²·ab/n² over (mean² + 0.01), averaged over the channels; the variance of the mean
-    /// were the halves independent. They are interleaved points of one R2 sequence, whose
-    /// errors partly cancel in the mean, so this is an upper estimate (docs/architecture.md).
+    /// The squared error of mean() relative to its value, as the image's relMSE counts it: per
+    /// channel σ_c² over (mean² + 0.01), averaged over the channels; σ as in relativeError().
     /// Meaningful with two samples or more (0 below).
     float relativeMse() const;
+
+private:
+    /// Per channel, the variance of the mean from the two blocks (count ≥ 2).
+    glm::vec3 blockVariance() const;
+    /// blockVariance() as it was at the last power of two below count, scaled to count
+    /// samples as 1/n (count ≥ 4).
+    glm::vec3 earlierBlockVariance() const;
 };
 
 /// Traces samples of pixels under a policy map and charges rays, pixels and time to its

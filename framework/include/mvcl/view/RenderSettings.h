@@ -33,8 +33,11 @@ struct RenderSettings {
     int minSamplesPerPixel = 8;     ///< Adaptive: samples before a pixel's error estimate is trusted (≥ 2)
     int maxSamplesPerPixel = 1024;  ///< Progressive/Adaptive: no pixel gets more (≥ 1)
     /// Progressive/Adaptive: stop when every pixel's estimated relative error is at most this
-    /// (0 = no error target). The estimate compares the mean of all samples with the mean of
-    /// the even-numbered ones: |I − A|₁ / √(ε + I_r + I_g + I_b), ε = 1e-4.
+    /// (0 = no error target). The estimate is the standard error of the pixel's mean from two
+    /// contiguous blocks of its samples (means A of the first a = 2^m, B of the other b):
+    /// Σ_c |A_c − B_c|·√(ab)/n / √(ε + I_r + I_g + I_b), I the mean, ε = 1e-4; from 4 samples
+    /// on, each channel's (A_c − B_c)²·ab/n² is at least the same term for the two halves of
+    /// the first p samples (p the last power of two below n) times p/n.
     float targetError = 0.f;
     double timeLimitSeconds = 0.0;  ///< stop refining after this long since the last reset (0 = none)
     /// While the camera moves, a reduced-resolution preview sized to take about this long
