@@ -32,18 +32,25 @@ constexpr double kR2b = 0.56984029099805326591;
 
 } // namespace
 
-glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed) {
+PixelSequence::PixelSequence(int x, int y, uint32_t seed) {
+    const uint32_t key = hash32(uint32_t(y) * 0x9e3779b1u ^ uint32_t(x) ^ hash32(seed));
+    m_u0 = 0.5 + unitDouble(key);
+    m_v0 = 0.5 + unitDouble(hash32(key));
+}
+
+glm::vec2 PixelSequence::offset(uint32_t k) const {
     if (k == 0) return {0.5f, 0.5f};
     // One sequence for all samples, not two independently rotated halves: the halves would make
     // an even/odd error estimate exact in expectation, but cost 20–100 % more squared error at
     // the same sample count (measured, docs/benchmarks.md), which every image would pay.
-    const uint32_t key = hash32(uint32_t(y) * 0x9e3779b1u ^ uint32_t(x) ^ hash32(seed));
-    const double u = 0.5 + unitDouble(key) + double(k) * kR2a;
-    const double v = 0.5 + unitDouble(hash32(key)) + double(k) * kR2b;
+    const double u = m_u0 + double(k) * kR2a;
+    const double v = m_v0 + double(k) * kR2b;
     // Rounded to float once; the largest float below 1 keeps the sample inside the pixel.
     const float below1 = 0x1.fffffep-1f;
     return {std::min(float(u - std::floor(u)), below1), std::min(float(v - std::floor(v)), below1)};
 }
+
+glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed) { return PixelSequence(x, y, seed).offset(k); }
 
 namespace {
 
@@ -133,6 +140,7 @@ void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &sam
     const std::span<const PolicyTerm> terms = m_map.terms(x, y);
     const int width = m_map.width(), height = m_map.height();
     const glm::vec2 pixel{float(x), float(y)};
+    const PixelSequence sequence(x, y, m_seed);
     if (terms.size() == 1) {
         const uint16_t index = terms[0].policy;
         chargeRun(index);
@@ -140,7 +148,7 @@ void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &sam
         const IntegratorPlan &plan = m_plans[index];
         const uint64_t raysBefore = m_rays.total();
         for (uint32_t k = samples.count; k < endSample; ++k) {
-            const glm::vec2 p = policy.samplePosition(pixel + sampleOffset(x, y, k, m_seed), width, height);
+            const glm::vec2 p = policy.samplePosition(pixel + sequence.offset(k), width, height);
             const glm::vec3 value =
                 m_integrator.radiance(m_camera.generateRay(p.x, p.y, width, height), policy.ray, plan, m_rays);
             samples.add(k, value);
@@ -155,7 +163,7 @@ void PixelTracer::addSamples(int x, int y, uint32_t endSample, PixelSamples &sam
     // A feathered edge: each sample blends every term at the same position.
     const uint64_t raysBefore = m_rays.total();
     for (uint32_t k = samples.count; k < endSample; ++k) {
-        const glm::vec3 value = traceTerms(x, y, pixel + sampleOffset(x, y, k, m_seed));
+        const glm::vec3 value = traceTerms(x, y, pixel + sequence.offset(k));
         samples.add(k, value);
     }
     samples.rays += uint32_t(m_rays.total() - raysBefore);
@@ -227,6 +235,10 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
             last = std::max(last, endSample[i]);
         }
     }
+    // Each pixel's sequence, hashed once per call; sample 0 (the centre) needs none.
+    std::array<PixelSequence, kBlockSide * kBlockSide> sequenceOf;
+    if (last > 1)
+        for (int i = 0; i < count; ++i) sequenceOf[size_t(i)] = PixelSequence(xOf[size_t(i)], yOf[size_t(i)], m_seed);
     // Whether the policy shapes rays (a magnifier): asked once, not per sample (a 3 × 3 compare).
     const bool shaped = policy.isShaped();
     PacketLanes &l = m_lanes;
@@ -256,7 +268,7 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
         for (int i = 0; i < count; ++i) {
             if (k < begin[size_t(i)] || k >= endSample[i]) continue;
             const int x = xOf[size_t(i)], y = yOf[size_t(i)];
-            const glm::vec2 position = glm::vec2{float(x), float(y)} + sampleOffset(x, y, k, m_seed);
+            const glm::vec2 position = glm::vec2{float(x), float(y)} + sequenceOf[size_t(i)].offset(k);
             l.positions[size_t(lanes)] = shaped ? policy.samplePosition(position, width, height) : position;
             l.sums[size_t(lanes)] = sumsOf[size_t(i)];
             l.sample[size_t(lanes++)] = k;

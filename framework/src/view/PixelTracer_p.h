@@ -30,6 +30,18 @@ namespace mvcl::detail {
 /// progressive rendering needs) rotated per pixel by a hash of (x, y, seed).
 glm::vec2 sampleOffset(int x, int y, uint32_t k, uint32_t seed);
 
+/// sampleOffset() of one pixel with its rotation computed once: a pixel's samples in a pass
+/// hash the pixel once, not once per sample. Bit for bit sampleOffset(x, y, k, seed).
+class PixelSequence {
+public:
+    PixelSequence() = default; ///< unrotated (filled in later)
+    PixelSequence(int x, int y, uint32_t seed);
+    glm::vec2 offset(uint32_t k) const;
+
+private:
+    double m_u0 = 0.5, m_v0 = 0.5; ///< 0.5 + the pixel's rotation, per axis
+};
+
 /// Running sums of one pixel's samples, and two contiguous blocks of them whose difference
 /// estimates the pixel's error (adaptive sampling, and the image's estimated relMSE): the first
 /// 2^m samples and the rest, 2^m the largest power of two below the count (at a power of two,
