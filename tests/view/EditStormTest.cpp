@@ -52,7 +52,10 @@ class Storm {
 public:
     Storm(LensRegistry &registry, std::vector<RenderSession *> sessions, const Camera &camera)
         : m_registry(registry), m_sessions(std::move(sessions)), m_camera(camera) {
-        for (int t = 0; t < kEditorThreads; ++t) m_stack.add(newLens(kLensTypes[t], t));
+        for (int t = 0; t < kEditorThreads; ++t) {
+            m_stack.add(newLens(kLensTypes[t], t));
+            m_firstLenses.push_back(m_stack.lens(t));
+        }
     }
 
     const LensStack &stack() const { return m_stack; }
@@ -63,11 +66,9 @@ public:
     void edit(int editor, uint32_t seed, int count) {
         std::mt19937 rng(seed);
         std::uniform_real_distribution<float> unit(0.f, 1.f);
-        std::shared_ptr<Lens> mine;
-        {
-            std::lock_guard lock(m_stackMutex);
-            mine = m_stack.lens(editor);
-        }
+        // The lens this editor was given, not the one at its index now: another editor may have
+        // reordered the stack already, and two editors would then stage one lens at once.
+        std::shared_ptr<Lens> mine = m_firstLenses[std::size_t(editor)];
         for (int e = 0; e < count; ++e) {
             RenderSession &session = *m_sessions[rng() % m_sessions.size()];
             switch (rng() % 8) {
@@ -170,6 +171,7 @@ private:
     const Camera m_camera;
     std::mutex m_stackMutex;
     LensStack m_stack;
+    std::vector<std::shared_ptr<Lens>> m_firstLenses; ///< editor t's lens at the start
     std::atomic<int> m_edits{0};
 };
 
