@@ -26,6 +26,7 @@ using namespace mvcl;
 namespace {
 
 using test::expectSameHit;
+using test::makeSoup;
 using test::randomQuery;
 using test::randomUnit;
 
@@ -37,40 +38,6 @@ TracerSettings quick(int threads = 0, int maxLeafSize = 4) {
     s.buildThreads = threads;
     s.maxLeafSize = maxLeafSize;
     return s;
-}
-
-/// Random triangles of mixed sizes over four layers, a few spheres and a plane.
-Scene makeSoup(int triangles, uint32_t seed) {
-    Scene scene;
-    scene.materials.resize(1);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> pos(-1.f, 1.f), size(0.f, 1.f);
-    for (int layer = 0; layer < 4; ++layer) {
-        TriangleMesh mesh;
-        mesh.name = "soup" + std::to_string(layer);
-        mesh.layer = layer;
-        for (int i = 0; i < triangles / 4; ++i) {
-            const glm::vec3 c{pos(rng), pos(rng), pos(rng)};
-            const float extent = i % 50 == 0 ? 0.8f : 0.05f * size(rng); // some long thin ones
-            const uint32_t base = uint32_t(mesh.positions.size());
-            for (int k = 0; k < 3; ++k) mesh.positions.push_back(c + extent * randomUnit(rng));
-            mesh.indices.push_back({base, base + 1, base + 2});
-        }
-        scene.meshes.push_back(std::move(mesh));
-    }
-    for (int i = 0; i < 6; ++i) {
-        Sphere s;
-        s.center = {pos(rng), pos(rng), pos(rng)};
-        s.radius = 0.05f + 0.1f * size(rng);
-        s.layer = i % 4;
-        scene.spheres.push_back(s);
-    }
-    Plane floor;
-    floor.normal = {0.f, 1.f, 0.f};
-    floor.offset = -1.5f;
-    floor.layer = 1;
-    scene.planes.push_back(floor);
-    return scene;
 }
 
 /// Random rays from inside and around the scene under random queries: closest and any hits of

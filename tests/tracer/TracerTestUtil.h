@@ -15,6 +15,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <string>
@@ -44,6 +45,71 @@ inline void expectSameHit(bool foundA, const Hit &a, bool foundB, const Hit &b, 
     EXPECT_EQ(std::bit_cast<uint32_t>(a.v), std::bit_cast<uint32_t>(b.v)) << what;
     EXPECT_EQ(a.layer, b.layer) << what;
 }
+
+/// Random triangles in [-1, 1]³ plus exact duplicates, axis-aligned and oblique coplanar sets,
+/// spheres and a floor plane, spread over four layers.
+inline Scene makeSoup(int triangles, uint32_t seed) {
+    Scene scene;
+    scene.materials.resize(1);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(-1.f, 1.f), small(-0.2f, 0.2f);
+    for (int layer = 0; layer < 4; ++layer) {
+        TriangleMesh mesh;
+        mesh.name = "soup" + std::to_string(layer);
+        mesh.layer = layer;
+        for (int i = 0; i < triangles / 4; ++i) {
+            const glm::vec3 c{pos(rng), pos(rng), pos(rng)};
+            const uint32_t base = uint32_t(mesh.positions.size());
+            const int kind = i % 8;
+            if (kind == 0 && i > 0) {
+                // Exact duplicate of the previous triangle (same vertices, new indices).
+                const glm::uvec3 prev = mesh.indices.back();
+                mesh.positions.push_back(mesh.positions[prev.x]);
+                mesh.positions.push_back(mesh.positions[prev.y]);
+                mesh.positions.push_back(mesh.positions[prev.z]);
+            } else if (kind == 1) {
+                // Coplanar with z = 0.25 (axis-aligned: box faces coincide with the plane).
+                mesh.positions.push_back({c.x, c.y, 0.25f});
+                mesh.positions.push_back({c.x + small(rng), c.y + small(rng), 0.25f});
+                mesh.positions.push_back({c.x + small(rng), c.y + small(rng), 0.25f});
+            } else if (kind == 2) {
+                // Coplanar with the oblique plane x + y + z = 0.5.
+                for (int k = 0; k < 3; ++k) {
+                    const float x = c.x + small(rng), y = c.y + small(rng);
+                    mesh.positions.push_back({x, y, 0.5f - x - y});
+                }
+            } else {
+                for (int k = 0; k < 3; ++k)
+                    mesh.positions.push_back(c + glm::vec3{small(rng), small(rng), small(rng)});
+            }
+            mesh.indices.push_back({base, base + 1, base + 2});
+        }
+        scene.meshes.push_back(std::move(mesh));
+    }
+    // A few degenerate and non-finite triangles that must be left out.
+    TriangleMesh junk;
+    junk.name = "junk";
+    junk.positions = {glm::vec3(0.f), glm::vec3(0.5f), glm::vec3(1.f),
+                      glm::vec3(std::numeric_limits<float>::quiet_NaN()), glm::vec3(0.1f, 0.f, 0.f)};
+    junk.indices = {{0, 1, 2}, {0, 3, 4}, {0, 0, 4}};
+    scene.meshes.push_back(std::move(junk));
+    for (int i = 0; i < 8; ++i) {
+        Sphere s;
+        s.center = {pos(rng), pos(rng), pos(rng)};
+        s.radius = 0.05f + 0.1f * std::fabs(small(rng));
+        s.layer = i % 4;
+        scene.spheres.push_back(s);
+    }
+    Sphere dup = scene.spheres.front(); // exact duplicate sphere
+    scene.spheres.push_back(dup);
+    Plane floor;
+    floor.normal = {0.f, 1.f, 0.f};
+    floor.offset = -1.5f;
+    floor.layer = 2;
+    scene.planes.push_back(floor);
+    return scene;
+}
+
 
 /// A query with, at random, a layer mask over four layers, a distance window and up to three
 /// clip volumes (boxes, spheres, half-spaces; keep inside or outside) in [−1, 1]³.
