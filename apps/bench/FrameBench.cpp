@@ -136,8 +136,8 @@ int runFrameBench(int argc, char **argv) {
         const RayCounters &rays = frame.rays;
         const double total = double(rays.total());
         const double recorded = double(log.closestHitRays() + log.anyHitRays());
-        std::printf("scene      %s, %dx%d, %d spp, %d threads, best of %d\n", scene.name.c_str(), o.width, o.height,
-                    o.samplesPerPixel, o.threads, o.repeat);
+        std::printf("scene      %s, %dx%d, %d spp, %d threads, best of %d, on %s\n", scene.name.c_str(), o.width,
+                    o.height, o.samplesPerPixel, o.threads, o.repeat, cpuModelName().c_str());
         std::printf("rays       %.3f M: primary %.3f M, shadow %.3f M, reflection %.3f M, refraction %.3f M\n",
                     total * 1e-6, double(rays.primary) * 1e-6, double(rays.shadow) * 1e-6,
                     double(rays.reflection) * 1e-6, double(rays.refraction) * 1e-6);
