@@ -37,21 +37,27 @@ std::vector<SceneLoadJob::Result> allResults(SceneLoadJob &job) {
     return results;
 }
 
-
-} // namespace
-
-TEST(SceneLoadJob, HandsOutTheSceneAsReadThenTheInferredOne) {
-    SceneLoadJob job(engine(), {});
-    // Taking results as they come (a display loop would): the first is the scene as read.
+/// The job's first result, taken as a display loop would, as soon as it comes.
+SceneLoadJob::Result firstResultOf(SceneLoadJob &job) {
     std::optional<SceneLoadJob::Result> first;
     while (!first && !job.isFinished()) {
         first = job.takeResult();
         std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
-    ASSERT_TRUE(first.has_value()) << job.progressText();
-    EXPECT_FALSE(first->layersAreFinal);
-    EXPECT_EQ(first->scene->layers.count(), 1);
-    EXPECT_EQ(&first->tracer->scene(), first->scene.get());
+    EXPECT_TRUE(first.has_value()) << job.progressText();
+    return first.value_or(SceneLoadJob::Result{});
+}
+
+} // namespace
+
+TEST(SceneLoadJob, HandsOutTheSceneAsReadThenTheInferredOne) {
+    SceneLoadJob job(engine(), {});
+    // The first result is the scene as read.
+    const SceneLoadJob::Result first = firstResultOf(job);
+    ASSERT_TRUE(first.scene);
+    EXPECT_FALSE(first.layersAreFinal);
+    EXPECT_EQ(first.scene->layers.count(), 1);
+    EXPECT_EQ(&first.tracer->scene(), first.scene.get());
     job.wait();
     EXPECT_EQ(job.stage(), SceneLoadJob::Stage::Done);
     const std::optional<SceneLoadJob::Result> last = job.takeResult();
@@ -66,8 +72,8 @@ TEST(SceneLoadJob, HandsOutTheSceneAsReadThenTheInferredOne) {
     EXPECT_EQ(&last->tracer->scene(), last->scene.get());
     test::expectSameClosestHits(*last->tracer, Tracer(*last->scene));
     // The first result is untouched by the inference that ran beside it.
-    for (const TriangleMesh &m : first->scene->meshes) EXPECT_EQ(m.layerSource, LayerSource::Unassigned);
-    test::expectSameClosestHits(*first->tracer, Tracer(*first->scene));
+    for (const TriangleMesh &m : first.scene->meshes) EXPECT_EQ(m.layerSource, LayerSource::Unassigned);
+    test::expectSameClosestHits(*first.tracer, Tracer(*first.scene));
 }
 
 TEST(SceneLoadJob, NothingToInferGivesOneFinalResult) {
@@ -113,13 +119,9 @@ TEST(SceneLoadJob, CancelStopsAndHandsOutNothingMore) {
 
 TEST(SceneLoadJob, WhenReleasedInfersOnlyAfterReleaseInference) {
     SceneLoadJob job(engine(), {}, SceneLoadJob::InferenceStart::WhenReleased);
-    std::optional<SceneLoadJob::Result> first;
-    while (!first && !job.isFinished()) {
-        first = job.takeResult();
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    ASSERT_TRUE(first.has_value()) << job.progressText();
-    EXPECT_FALSE(first->layersAreFinal);
+    const SceneLoadJob::Result first = firstResultOf(job);
+    ASSERT_TRUE(first.scene);
+    EXPECT_FALSE(first.layersAreFinal);
     // Held: longer than the whole inference takes, nothing more comes.
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));
     EXPECT_EQ(job.stage(), SceneLoadJob::Stage::InferringLayers);
@@ -140,19 +142,6 @@ TEST(SceneLoadJob, WhenReleasedInfersOnlyAfterReleaseInference) {
     EXPECT_EQ(held.stage(), SceneLoadJob::Stage::Done);
     EXPECT_FALSE(held.takeResult().has_value());
 }
-
-namespace {
-/// The first result of a job made with InferenceStart::WhenReleased (it waits for it).
-SceneLoadJob::Result firstResultOf(SceneLoadJob &job) {
-    std::optional<SceneLoadJob::Result> first;
-    while (!first && !job.isFinished()) {
-        first = job.takeResult();
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    EXPECT_TRUE(first.has_value()) << job.progressText();
-    return first.value_or(SceneLoadJob::Result{});
-}
-} // namespace
 
 TEST(SceneLoadJob, AQuickBvhFirstThenTheFullOneWithTheInferredLayers) {
     SceneLoadJob job(engine(), {}, SceneLoadJob::InferenceStart::WhenReleased, SceneLoadJob::FirstBvh::Quick);
