@@ -23,6 +23,7 @@
 #include <sstream>
 #include <string>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -403,6 +404,28 @@ TEST(LensStackFile, BadFilesFailNamingTheFileAndThePath) {
 
 // A write that fails half-way (here: the file-size limit) leaves the existing file as it was
 // and no temporary file behind.
+TEST(LensStackFile, AWriteRemovesTheTemporaryFilesOfKilledWriters) {
+    const fs::path dir = scratchDir("temporaries");
+    const fs::path file = dir / "session.json";
+    // A process that has ended: its pid names no running process.
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    ASSERT_GT(child, 0);
+    ::waitpid(child, nullptr, 0);
+    const fs::path killed = dir / ("session.json.part-" + std::to_string(child) + "-0");
+    const fs::path running = dir / ("session.json.part-" + std::to_string(::getpid()) + "-999999");
+    const fs::path otherFile = dir / ("other.json.part-" + std::to_string(child) + "-0");
+    const fs::path notOurs = dir / "session.json.part-Ab12Cd";
+    for (const fs::path &p : {killed, running, otherFile, notOurs}) writeText(p, "{\"half\": ");
+
+    writeLensStackFile(file, LensStackDescription{});
+    EXPECT_FALSE(fs::exists(killed)) << "left by a writer that no longer runs";
+    EXPECT_TRUE(fs::exists(running)) << "a running writer's file is its own";
+    EXPECT_TRUE(fs::exists(otherFile)) << "another file's temporaries wait for that file's next write";
+    EXPECT_TRUE(fs::exists(notOurs)) << "not named as this writer names its files";
+    EXPECT_NO_THROW(readLensStackFile(file, registry()));
+}
+
 TEST(LensStackFile, AFailedWriteLeavesTheExistingFileUntouched) {
     const fs::path dir = scratchDir("atomic");
     const fs::path file = dir / "session.json";

@@ -3,15 +3,19 @@
 #include <mvcl/lens/Lens.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/types.h>
 #include <unistd.h>
 
 namespace mvcl::detail {
@@ -162,6 +166,30 @@ std::string readTextFile(const std::filesystem::path &path, const std::string &w
     return buffer.str();
 }
 
+namespace {
+
+std::atomic<unsigned> g_nextTemporary{0};
+
+/// Temporary files of `path` ("<file>.part-<pid>-<n>") whose writing process no longer runs: a
+/// process killed between creating one and renaming it leaves it behind. A process still running
+/// may be writing its own, and files of another form are not ours: both are left alone.
+void removeTemporariesOfGoneWriters(const std::filesystem::path &path) {
+    const std::string prefix = path.filename().string() + ".part-";
+    std::error_code ec;
+    const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    for (const std::filesystem::directory_entry &entry : std::filesystem::directory_iterator(folder, ec)) {
+        const std::string file = entry.path().filename().string();
+        if (file.rfind(prefix, 0) != 0) continue;
+        long pid = 0;
+        const char *first = file.data() + prefix.size(), *last = file.data() + file.size();
+        const auto [end, error] = std::from_chars(first, last, pid);
+        if (error != std::errc() || end == last || *end != '-' || pid <= 0) continue;
+        if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) std::filesystem::remove(entry.path(), ec);
+    }
+}
+
+} // namespace
+
 void writeFileAtomically(const std::filesystem::path &path, std::string_view text) {
     const std::string name = path.string();
     if (path.has_parent_path()) {
@@ -169,15 +197,21 @@ void writeFileAtomically(const std::filesystem::path &path, std::string_view tex
         std::filesystem::create_directories(path.parent_path(), ec);
         if (ec) throw Error(name, "cannot create folder: " + ec.message());
     }
-    std::string temp = name + ".part-XXXXXX";
-    const int fd = ::mkstemp(temp.data());
+    // Named after this process, so that a later write can tell a file left by a killed writer.
+    std::string temp;
+    int fd = -1;
+    for (int attempt = 0; fd < 0 && attempt < 100; ++attempt) {
+        temp = name + ".part-" + std::to_string(::getpid()) + "-" + std::to_string(g_nextTemporary++);
+        fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+        if (fd < 0 && errno != EEXIST) break;
+    }
     if (fd < 0) throw Error(name, std::string("cannot create a temporary file next to it: ") + std::strerror(errno));
     const auto failWith = [&](const std::string &what) {
         const int error = errno;
         ::unlink(temp.c_str());
         throw Error(name, what + ": " + std::strerror(error));
     };
-    ::fchmod(fd, 0644); // mkstemp makes 0600; a session file is an ordinary document
+    ::fchmod(fd, 0644); // a session file is an ordinary document, whatever the umask
     if (!writeAll(fd, text) || ::fsync(fd) != 0) {
         const int error = errno;
         ::close(fd);
@@ -186,6 +220,7 @@ void writeFileAtomically(const std::filesystem::path &path, std::string_view tex
     }
     if (::close(fd) != 0) failWith("write failed");
     if (::rename(temp.c_str(), name.c_str()) != 0) failWith("cannot replace the file");
+    removeTemporariesOfGoneWriters(path);
 }
 
 } // namespace mvcl::detail

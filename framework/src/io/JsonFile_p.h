@@ -96,7 +96,9 @@ Json parseJsonDocument(std::string_view text, const std::string &sourceName);
 std::string readTextFile(const std::filesystem::path &path, const std::string &what);
 
 /// Temporary file in the same folder (so rename is atomic), flushed to disk, then renamed over
-/// `path`: readers see the old file or the new one, never a torn one. Throws mvcl::Error(path, ...).
+/// `path`: readers see the old file or the new one, never a torn one. The temporary file is
+/// "<file>.part-<pid>-<n>"; after the rename, those of processes that no longer run (killed
+/// mid-write) are removed. Throws mvcl::Error(path, ...).
 void writeFileAtomically(const std::filesystem::path &path, std::string_view text);
 
 } // namespace mvcl::detail
