@@ -17,6 +17,7 @@
 #include <glm/vec3.hpp>
 
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -42,19 +43,23 @@ private:
     double m_u0 = 0.5, m_v0 = 0.5; ///< 0.5 + the pixel's rotation, per axis
 };
 
-/// Running sums of one pixel's samples, and two contiguous blocks of them whose difference
-/// estimates the pixel's error (adaptive sampling, and the image's estimated relMSE): the first
-/// 2^m samples and the rest, 2^m the largest power of two below the count (at a power of two,
-/// the two halves). Each block is a run of consecutive points of the pixel's R2 sequence, itself
-/// well spread; the blocks' errors are nearly independent, so their difference measures the
-/// error of the mean, cancellation included. Interleaved halves (even and odd samples) would
-/// not: their points fill each other's gaps, their errors cancel in the mean but not in the
-/// difference, and the estimate came out 1.5–9× the true error (docs/benchmarks.md).
+/// Running sums of one pixel's samples, and runs of them whose differences estimate the pixel's
+/// error (adaptive sampling, and the image's estimated relMSE). The blocks: the first 2^m
+/// samples and the rest, 2^m the largest power of two below the count (at a power of two, the
+/// two halves). Each block is a run of consecutive points of the pixel's R2 sequence, itself
+/// well spread, so their difference measures the error of the mean with the sequence's
+/// cancellation in it; interleaved halves (even and odd samples) fill each other's gaps, and
+/// their difference came out 1.5–9× the true error (docs/benchmarks.md). How much of the error
+/// cancels depends on the count, so every estimate is scaled to the expected squared error by
+/// a table per count (BlockEstimateScale_p.h), computed for pixels crossed by an edge.
 struct PixelSamples {
     glm::vec3 sum{0.f};
     /// Sums of the first 2^m, 2^(m−1) and 2^(m−2) samples, 2^m the largest power of two not
     /// above count (0 while there is none).
     glm::vec3 prefixSum{0.f}, halfPrefixSum{0.f}, quarterPrefixSum{0.f};
+    /// Sums of the first 3·2^(m−2) samples (2^m as above) and of the first 3·2^(m−1), the next
+    /// level's, taken on the way there.
+    glm::vec3 threeQuarterSum{0.f}, nextThreeQuarterSum{0.f};
     uint32_t count = 0;
     uint32_t rays = 0; ///< rays traced for these samples: what one more sample costs, on average
 
@@ -63,33 +68,44 @@ struct PixelSamples {
     /// count counts them), and advancing count is the caller's.
     void add(uint32_t k, const glm::vec3 &value) {
         sum += value;
-        if ((k & (k + 1)) == 0) { // now k + 1 samples, a power of two
+        const uint32_t n = k + 1;
+        if ((k & n) == 0) { // n a power of two
             quarterPrefixSum = halfPrefixSum;
             halfPrefixSum = prefixSum;
             prefixSum = sum;
+            threeQuarterSum = nextThreeQuarterSum;
+        } else if (n % 3 == 0 && std::has_single_bit(n / 3)) { // three quarters of the next power of two
+            nextThreeQuarterSum = sum;
         }
     }
-    /// Σ_c σ_c / √(ε + I_r + I_g + I_b), I the mean and σ_c² = (A_c − B_c)²·ab/n² per channel,
-    /// A the mean of the first block (a samples), B of the second (b); +∞ with fewer than two
-    /// samples. The standard error of the mean, relative to its brightness. What adaptive
-    /// sampling decides by, so from 4 samples on σ_c² is at least the same estimate one level
-    /// down (the two halves of the first p samples, p the largest power of two below the count)
-    /// times p/n: one difference of two means is a single degree of freedom, below a tenth of
-    /// its expectation a quarter of the time, and a pixel whose estimate happened to come out
-    /// low would wait behind the others with its error. Scaling as 1/n, a Monte Carlo rate,
-    /// the earlier look only ever raises the estimate of a pixel whose error falls faster.
+    /// Σ_c σ_c / √(ε + I_r + I_g + I_b), I the mean and σ_c² the blocks' variance of the mean
+    /// per channel, (A_c − B_c)²·ab/n² (A the mean of the first block, a samples, B of the
+    /// second), scaled per count; +∞ with fewer than two samples. The standard error of the
+    /// mean, relative to its brightness. What adaptive sampling decides by, so from 4 samples on
+    /// σ_c² is at least the earlier look's: the same estimate from the two halves of the first
+    /// p samples (p the largest power of two below the count), scaled to n samples. One
+    /// difference of two means is a single degree of freedom, below a tenth of its expectation a
+    /// quarter of the time, and a pixel whose estimate happened to come out low would wait
+    /// behind the others with its error.
     float relativeError() const;
     /// The squared error of mean() relative to its value, as the image's relMSE counts it: per
-    /// channel σ_c² over (mean² + 0.01), averaged over the channels; σ as in relativeError().
-    /// Meaningful with two samples or more (0 below).
+    /// channel σ_c² over (mean² + 0.01), averaged over the channels. From 4 samples on σ_c² is the
+    /// mean of the blocks' and the later look's (the two halves of the second half of the first
+    /// 2^m samples, 2^m the largest power of two not above the count, scaled to n samples): the
+    /// later look is not among what adaptive sampling decided by, so a pixel it left behind
+    /// because its estimate came out low does not take that luck into the image's estimate
+    /// whole. Meaningful with two samples or more (0 below).
     float relativeMse() const;
 
 private:
     /// Per channel, the variance of the mean from the two blocks (count ≥ 2).
     glm::vec3 blockVariance() const;
-    /// blockVariance() as it was at the last power of two below count, scaled to count
-    /// samples as 1/n (count ≥ 4).
+    /// The variance of the mean of count samples from the two halves of the first p (p the
+    /// largest power of two below count; count ≥ 4).
     glm::vec3 earlierBlockVariance() const;
+    /// The same from the two halves of the second half of the first 2^m samples (2^m the
+    /// largest power of two not above count; count ≥ 4).
+    glm::vec3 laterBlockVariance() const;
 };
 
 /// Traces samples of pixels under a policy map and charges rays, pixels and time to its
