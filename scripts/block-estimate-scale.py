@@ -19,7 +19,7 @@ PixelSequence. The exact covered area is the true value; e is the mean of the fi
 minus it; v is PixelSamples' two-block variance of that mean. Both are averaged over --edges
 random edges (the same edges for every n, so neighbouring entries are smooth).
 
-    scripts/block-estimate-scale.py                     # the committed table: ~15 min, 1 core
+    scripts/block-estimate-scale.py                     # the committed tables: ~3 min, 1 core
     scripts/block-estimate-scale.py --edges 20000 -o /tmp/t.cpp    # a quick look
 
 Needs Debian's python3-numpy, hence /usr/bin/python3.
@@ -101,7 +101,7 @@ def sums_over_edges(max_count, edges, seed):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--max-count", type=int, default=4096, help="largest n in the table (a power of two)")
-    parser.add_argument("--edges", type=int, default=1_000_000, help="random edges averaged over")
+    parser.add_argument("--edges", type=int, default=250_000, help="random edges averaged over")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("-o", "--output", default="framework/src/view/BlockEstimateScaleTable.cpp")
     args = parser.parse_args()

@@ -38,11 +38,13 @@ double groupVariance(const std::vector<float> &grey, size_t a0, size_t a1, size_
     return d * d * a * b / ((a + b) * (a + b));
 }
 
+using ImageEstimate = PixelSamples::ImageEstimate;
+
 /// What relativeMse() should be for grey values: the blocks' estimate (the first `a` samples,
-/// the largest power of two below n, and the rest), from 4 samples on averaged with the later
-/// look's (the halves of the second half of the first 2^m, 2^m the largest power of two ≤ n),
-/// each scaled by its table.
-double expectedRelativeMse(const std::vector<float> &grey) {
+/// the largest power of two below n, and the rest); from 4 samples on, the later look's (the
+/// halves of the second half of the first 2^m, 2^m the largest power of two ≤ n) alone after
+/// adaptive decisions, or averaged with the blocks'; each scaled by its table.
+double expectedRelativeMse(const std::vector<float> &grey, ImageEstimate source) {
     const size_t n = grey.size(), power = std::bit_floor(n), a = power == n ? n / 2 : power;
     double mean = 0.0;
     for (float v : grey) mean += v / double(n);
@@ -50,7 +52,7 @@ double expectedRelativeMse(const std::vector<float> &grey) {
     if (n >= 4) {
         const double later = groupVariance(grey, power / 2, 3 * power / 4, 3 * power / 4, power) *
                              estimateScale(kLaterEstimateScale, uint32_t(n));
-        variance = (variance + later) / 2.0;
+        variance = source == ImageEstimate::EveryPixelAlike ? (variance + later) / 2.0 : later;
     }
     return variance / (mean * mean + 0.01);
 }
@@ -59,12 +61,14 @@ TEST(PixelSamplesTest, ImageEstimateIsTheBlocksAndTheLaterLook) {
     const std::vector<float> values{0.9f, 0.1f, 0.5f, 0.7f, 0.2f, 0.6f, 0.3f, 0.8f, 0.4f, 0.05f, 0.95f, 0.35f, 0.6f};
     for (size_t n = 2; n <= values.size(); ++n) {
         const std::vector<float> grey(values.begin(), values.begin() + long(n));
-        EXPECT_NEAR(samplesOf(grey).relativeMse(), expectedRelativeMse(grey), 1e-6) << n << " samples";
+        for (ImageEstimate source : {ImageEstimate::EveryPixelAlike, ImageEstimate::AfterAdaptiveDecisions})
+            EXPECT_NEAR(samplesOf(grey).relativeMse(source), expectedRelativeMse(grey, source), 1e-6) << n << " samples";
     }
     // Blocks that agree (halves 0.5 and 0.5) and a later look that does not (0.9 against 0.1).
-    const std::vector<float> grey{0.5f, 0.5f, 0.5f, 0.5f, 0.9f, 0.9f, 0.1f, 0.1f};
-    EXPECT_NEAR(samplesOf(grey).relativeMse(), 0.8 * 0.8 / 4.0 * estimateScale(kLaterEstimateScale, 8) / 2.0 / 0.26,
-                1e-6);
+    const PixelSamples s = samplesOf({0.5f, 0.5f, 0.5f, 0.5f, 0.9f, 0.9f, 0.1f, 0.1f});
+    const double later = 0.8 * 0.8 / 4.0 * estimateScale(kLaterEstimateScale, 8) / 0.26;
+    EXPECT_NEAR(s.relativeMse(ImageEstimate::EveryPixelAlike), later / 2.0, 1e-6);
+    EXPECT_NEAR(s.relativeMse(ImageEstimate::AfterAdaptiveDecisions), later, 1e-6);
 }
 
 TEST(PixelSamplesTest, RelativeErrorIsTheStandardErrorOverTheSquareRootOfBrightness) {
@@ -81,20 +85,23 @@ TEST(PixelSamplesTest, RelativeErrorKeepsTheEstimateOneLevelDown) {
     // level down, the first four's halves (0.7 and 0.3) disagree: the variance of a 4-sample
     // mean from them, 0.4² / 4, scaled to 8 samples by its table, is what the pixel reports.
     const PixelSamples s = samplesOf({0.9f, 0.5f, 0.1f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f});
-    EXPECT_NEAR(s.relativeMse(), 0.0, 1e-9) << "the image's estimate does not take the earlier look";
+    for (ImageEstimate source : {ImageEstimate::EveryPixelAlike, ImageEstimate::AfterAdaptiveDecisions})
+        EXPECT_NEAR(s.relativeMse(source), 0.0, 1e-9) << "the image's estimate does not take the earlier look";
     const double sigma = std::sqrt(0.4 * 0.4 / 4.0 * estimateScale(kEarlierEstimateScale, 8));
     EXPECT_NEAR(s.relativeError(), 3.0 * sigma / std::sqrt(1e-4 + 1.5), 1e-6);
     // Where the blocks see more than the earlier look, theirs is kept.
     const PixelSamples later = samplesOf({0.5f, 0.5f, 0.5f, 0.5f, 0.9f, 0.9f, 0.9f, 0.9f});
-    EXPECT_NEAR(later.relativeError(), 3.0 * 0.4 * 0.5 * std::sqrt(estimateScale(kBlockEstimateScale, 8)) / std::sqrt(1e-4 + 2.1), 1e-6);
+    EXPECT_NEAR(later.relativeError(),
+                3.0 * 0.4 * 0.5 * std::sqrt(estimateScale(kBlockEstimateScale, 8)) / std::sqrt(1e-4 + 2.1), 1e-6);
 }
 
 TEST(PixelSamplesTest, NoEstimateBelowTwoSamples) {
     const PixelSamples one = samplesOf({0.5f});
     EXPECT_EQ(one.relativeError(), INFINITY);
-    EXPECT_EQ(one.relativeMse(), 0.f);
+    EXPECT_EQ(one.relativeMse(ImageEstimate::EveryPixelAlike), 0.f);
+    EXPECT_EQ(one.relativeMse(ImageEstimate::AfterAdaptiveDecisions), 0.f);
     // Equal samples: no error, whatever the blocks.
-    EXPECT_EQ(samplesOf({0.5f, 0.5f, 0.5f}).relativeMse(), 0.f);
+    EXPECT_EQ(samplesOf({0.5f, 0.5f, 0.5f}).relativeMse(ImageEstimate::EveryPixelAlike), 0.f);
 }
 
 /// The covered area of the unit pixel on the side nx·x + ny·y < c of a straight edge, exactly:
@@ -128,7 +135,8 @@ TEST(PixelSamplesTest, ScaledEstimateMatchesTheErrorOfPixelsCrossedByAnEdge) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     const std::vector<uint32_t> counts{2, 3, 4, 8, 16, 32, 48, 64, 100, 128, 256};
     constexpr int kEdges = 40000;
-    std::vector<double> estimated(counts.size(), 0.0), squaredError(counts.size(), 0.0);
+    // Per count: Σ e², and Σ of the variance each image estimate gives.
+    std::vector<double> squaredError(counts.size(), 0.0), alike(counts.size(), 0.0), afterDecisions(counts.size(), 0.0);
     for (int edge = 0; edge < kEdges; ++edge) {
         const double angle = 2.0 * std::numbers::pi * unit(rng), nx = std::cos(angle), ny = std::sin(angle);
         const double c = nx * unit(rng) + ny * unit(rng);
@@ -143,16 +151,17 @@ TEST(PixelSamplesTest, ScaledEstimateMatchesTheErrorOfPixelsCrossedByAnEdge) {
             if (s.count != counts[next]) continue;
             const double mean = s.mean().x, e = mean - area;
             // relativeMse() divides by mean² + 0.01 per pixel; multiplied back, the variance.
-            estimated[next] += double(s.relativeMse()) * (mean * mean + 0.01);
+            alike[next] += double(s.relativeMse(ImageEstimate::EveryPixelAlike)) * (mean * mean + 0.01);
+            afterDecisions[next] += double(s.relativeMse(ImageEstimate::AfterAdaptiveDecisions)) * (mean * mean + 0.01);
             squaredError[next] += e * e;
             ++next;
         }
     }
-    for (size_t i = 0; i < counts.size(); ++i) {
-        const double ratio = estimated[i] / squaredError[i];
-        EXPECT_GT(ratio, 0.85) << counts[i] << " samples";
-        EXPECT_LT(ratio, 1.15) << counts[i] << " samples";
-    }
+    for (size_t i = 0; i < counts.size(); ++i)
+        for (double ratio : {alike[i] / squaredError[i], afterDecisions[i] / squaredError[i]}) {
+            EXPECT_GT(ratio, 0.85) << counts[i] << " samples";
+            EXPECT_LT(ratio, 1.15) << counts[i] << " samples";
+        }
 }
 
 } // namespace

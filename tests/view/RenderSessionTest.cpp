@@ -381,8 +381,8 @@ TEST_F(RenderSessionTest, EstimatedRelativeMseFollowsTheTrueError) {
         EXPECT_FALSE(session.convergence().estimatedRelativeMse.has_value()) << "one sample a pixel: no estimate yet";
         int checked = 0;
         // Adaptive: until its mean is 32 samples a pixel, the error then about that of progressive's last.
-        for (ConvergenceStats c = session.convergence(); session.renderPass().kind != PassKind::Idle && c.meanSamples < 32;) {
-            c = session.convergence();
+        while (session.convergence().meanSamples < 32 && session.renderPass().kind != PassKind::Idle) {
+            const ConvergenceStats c = session.convergence();
             ASSERT_TRUE(c.estimatedRelativeMse.has_value());
             const double measured = relativeMse(session.image(), truth);
             const double estimated = *c.estimatedRelativeMse;

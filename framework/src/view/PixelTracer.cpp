@@ -71,7 +71,8 @@ glm::vec3 PixelSamples::blockVariance() const {
     const bool halves = power == count;
     const glm::vec3 first = halves ? halfPrefixSum : prefixSum;
     const uint32_t a = halves ? power / 2 : power;
-    return varianceFromGroups(first, float(a), sum - first, float(count - a)) * estimateScale(kBlockEstimateScale, count);
+    return varianceFromGroups(first, float(a), sum - first, float(count - a)) *
+           estimateScale(kBlockEstimateScale, count);
 }
 
 glm::vec3 PixelSamples::earlierBlockVariance() const {
@@ -79,8 +80,10 @@ glm::vec3 PixelSamples::earlierBlockVariance() const {
     const uint32_t power = std::bit_floor(count);
     const bool halves = power == count;
     const uint32_t p = halves ? power / 2 : power;
-    const glm::vec3 whole = halves ? halfPrefixSum : prefixSum, half = halves ? quarterPrefixSum : halfPrefixSum;
-    return varianceFromGroups(half, float(p / 2), whole - half, float(p / 2)) * estimateScale(kEarlierEstimateScale, count);
+    const glm::vec3 whole = halves ? halfPrefixSum : prefixSum;
+    const glm::vec3 half = halves ? quarterOrNextThreeQuarterSum : halfPrefixSum;
+    return varianceFromGroups(half, float(p / 2), whole - half, float(p / 2)) *
+           estimateScale(kEarlierEstimateScale, count);
 }
 
 glm::vec3 PixelSamples::laterBlockVariance() const {
@@ -99,14 +102,12 @@ float PixelSamples::relativeError() const {
     return (sigma.x + sigma.y + sigma.z) / std::sqrt(1e-4f + std::max(all.x + all.y + all.z, 0.f));
 }
 
-float PixelSamples::relativeMse() const {
+float PixelSamples::relativeMse(ImageEstimate source) const {
     if (count < 2) return 0.f;
     const glm::vec3 all = sum / float(count);
-    // Not the blocks alone: adaptive sampling leaves a pixel behind when its blocks and earlier
-    // look came out low, so over the pixels it left behind they are low on average (by 20–25 %
-    // in the images measured). The later look is not among what decided; half of it halves that
-    // bias, and with the blocks the estimate keeps two degrees of freedom.
-    const glm::vec3 variance = count >= 4 ? (blockVariance() + laterBlockVariance()) * 0.5f : blockVariance();
+    const glm::vec3 variance = count < 4                                   ? blockVariance()
+                               : source == ImageEstimate::EveryPixelAlike ? (blockVariance() + laterBlockVariance()) * 0.5f
+                                                                          : laterBlockVariance();
     const glm::vec3 relative = variance / (all * all + 0.01f);
     return (relative.x + relative.y + relative.z) / 3.f;
 }

@@ -54,12 +54,13 @@ private:
 /// a table per count (BlockEstimateScale_p.h), computed for pixels crossed by an edge.
 struct PixelSamples {
     glm::vec3 sum{0.f};
-    /// Sums of the first 2^m, 2^(m−1) and 2^(m−2) samples, 2^m the largest power of two not
+    /// Sums of the first 2^m, 2^(m−1) and 3·2^(m−2) samples, 2^m the largest power of two not
     /// above count (0 while there is none).
-    glm::vec3 prefixSum{0.f}, halfPrefixSum{0.f}, quarterPrefixSum{0.f};
-    /// Sums of the first 3·2^(m−2) samples (2^m as above) and of the first 3·2^(m−1), the next
-    /// level's, taken on the way there.
-    glm::vec3 threeQuarterSum{0.f}, nextThreeQuarterSum{0.f};
+    glm::vec3 prefixSum{0.f}, halfPrefixSum{0.f}, threeQuarterSum{0.f};
+    /// At count = 2^m, the sum of the first 2^(m−2) samples (the earlier look needs it there
+    /// only); from 3·2^(m−1) samples on, the sum of the first 3·2^(m−1), the next level's three
+    /// quarters. One slot for both keeps a pixel's state at 68 bytes.
+    glm::vec3 quarterOrNextThreeQuarterSum{0.f};
     uint32_t count = 0;
     uint32_t rays = 0; ///< rays traced for these samples: what one more sample costs, on average
 
@@ -70,12 +71,12 @@ struct PixelSamples {
         sum += value;
         const uint32_t n = k + 1;
         if ((k & n) == 0) { // n a power of two
-            quarterPrefixSum = halfPrefixSum;
+            threeQuarterSum = quarterOrNextThreeQuarterSum;
+            quarterOrNextThreeQuarterSum = halfPrefixSum;
             halfPrefixSum = prefixSum;
             prefixSum = sum;
-            threeQuarterSum = nextThreeQuarterSum;
         } else if (n % 3 == 0 && std::has_single_bit(n / 3)) { // three quarters of the next power of two
-            nextThreeQuarterSum = sum;
+            quarterOrNextThreeQuarterSum = sum;
         }
     }
     /// Σ_c σ_c / √(ε + I_r + I_g + I_b), I the mean and σ_c² the blocks' variance of the mean
@@ -88,14 +89,23 @@ struct PixelSamples {
     /// quarter of the time, and a pixel whose estimate happened to come out low would wait
     /// behind the others with its error.
     float relativeError() const;
+    /// Which of a pixel's estimates its share of the image's estimated relMSE comes from.
+    enum class ImageEstimate {
+        /// Every pixel sampled alike (fixed or progressive): from 4 samples on, the mean of the
+        /// blocks' estimate and the later look's (the two halves of the second half of the first
+        /// 2^m samples, 2^m the largest power of two not above the count, scaled to n samples):
+        /// two degrees of freedom.
+        EveryPixelAlike,
+        /// Adaptive sampling: from 4 samples on, the later look alone. The blocks and the earlier
+        /// look are what it decides by, and a pixel it leaves behind because they came out low
+        /// would take that luck into the image's estimate (from the blocks alone, 0.61–0.69× of
+        /// the true error in the images measured); the later look is not among what decided.
+        AfterAdaptiveDecisions,
+    };
     /// The squared error of mean() relative to its value, as the image's relMSE counts it: per
-    /// channel σ_c² over (mean² + 0.01), averaged over the channels. From 4 samples on σ_c² is the
-    /// mean of the blocks' and the later look's (the two halves of the second half of the first
-    /// 2^m samples, 2^m the largest power of two not above the count, scaled to n samples): the
-    /// later look is not among what adaptive sampling decided by, so a pixel it left behind
-    /// because its estimate came out low does not take that luck into the image's estimate
-    /// whole. Meaningful with two samples or more (0 below).
-    float relativeMse() const;
+    /// channel σ_c² over (mean² + 0.01), averaged over the channels, σ_c² from `source`.
+    /// Meaningful with two samples or more (0 below).
+    float relativeMse(ImageEstimate source) const;
 
 private:
     /// Per channel, the variance of the mean from the two blocks (count ≥ 2).

@@ -192,6 +192,8 @@ void RenderSession::Private::summariseTile(int tile) {
     const uint32_t wanted = samplesWanted();
     const bool byError = settings.sampling == SamplingMode::Adaptive && settings.targetError > 0.f;
     const uint32_t minimum = uint32_t(settings.minSamplesPerPixel);
+    const auto imageEstimate = byError ? detail::PixelSamples::ImageEstimate::AfterAdaptiveDecisions
+                                       : detail::PixelSamples::ImageEstimate::EveryPixelAlike;
     const auto priorityAt = [&](int x, int y, const detail::PixelSamples &s) {
         return s.count >= wanted ? 0.f : !byError || s.count < minimum ? INFINITY : errorPriority(x, y, s.rays);
     };
@@ -211,7 +213,7 @@ void RenderSession::Private::summariseTile(int tile) {
                 summary.errorSum += errors[i];
                 summary.maxError = std::max(summary.maxError, errors[i]);
                 ++summary.withError;
-                summary.relativeMseSum += samples[i].relativeMse();
+                summary.relativeMseSum += samples[i].relativeMse(imageEstimate);
             } else {
                 ++summary.withoutEstimate;
             }
