@@ -79,8 +79,9 @@ struct ConvergenceStats {
     double maxError = 0.0;
     /// The image's relMSE (mean over pixels and channels of (I − R)² / (R² + 0.01), R the
     /// converged image) as estimated without R: per pixel, the variance of its mean from the
-    /// difference of the means of two contiguous blocks of its samples (the first 2^m and the
-    /// rest). Empty until every pixel has two samples.
+    /// differences of the means of contiguous runs of its samples, scaled per sample count to
+    /// the expected squared error (docs/architecture.md, "The render session"); under adaptive
+    /// sampling from runs its decisions did not look at. Empty until every pixel has two samples.
     std::optional<double> estimatedRelativeMse;
     uint64_t activePixels = 0; ///< pixels that still want samples
     double elapsedSeconds = 0.0; ///< since the last reset of every pixel
