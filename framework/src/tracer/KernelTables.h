@@ -10,6 +10,7 @@
 
 #include "KernelIsa.h"
 
+#include <cstddef>
 #include <cstdint>
 
 namespace mvcl::detail {
@@ -20,6 +21,7 @@ struct BuildPrim;
 class LayerPriorityHit;
 class NearestHit;
 struct PacketSetup;
+struct PlaneRecord;
 struct RangeBounds;
 struct RayContext;
 struct UnusedBests;
@@ -30,9 +32,12 @@ struct PacketBests;
 /// The single-ray walk of the wide BVH (WideTraversal.inl), one entry per closest-hit state.
 struct SingleRayKernels {
     const char *name; ///< what Tracer::singleRayIsa() reports
-    /// Closest hit: offers every candidate to `best`; true if it changed.
-    bool (*closestNearest)(const WideBvh &wide, const RayContext &c, NearestHit &best);
-    bool (*closestLayered)(const WideBvh &wide, const RayContext &c, LayerPriorityHit &best);
+    /// Closest hit over the planes [planes, planes + planeCount) and the BVH: offers every
+    /// candidate to `best`; true if it changed.
+    bool (*closestNearest)(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount,
+                           const RayContext &c, NearestHit &best);
+    bool (*closestLayered)(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount,
+                           const RayContext &c, LayerPriorityHit &best);
     /// Any hit: true on the first accepted hit (`unused` is only there for the type).
     bool (*occluded)(const WideBvh &wide, const RayContext &c, NearestHit &unused);
 };

@@ -7,6 +7,7 @@
 
 #include "AnalyticShapes.h"
 #include "KernelIsa.h"
+#include "PlaneRecord.h"
 #include "PrimBlock.h"
 #include "RayContext.h"
 #include "WatertightTriangle.h"
@@ -19,6 +20,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #if defined(__SSE2__)
@@ -109,6 +111,25 @@ inline bool testSphere(const PrimBlock &block, int lane, const PrimInfo &info,
     if (sphereRoots(c.ray.origin, c.ray.direction, block.vertex(lane, 0), block.v[1][0][lane], roots) != 2)
         return false;
     return offerSphereRoots<AnyHit>(roots, info, c, best);
+}
+
+/// Tests the planes [planes, planes + count). For closest hit (AnyHit = false) offers their hits to
+/// `best` and returns true if it changed; for any hit returns true on the first accepted hit.
+template <bool AnyHit, class Best>
+inline bool testPlanes(const PlaneRecord *planes, std::size_t count, const RayContext &c, Best &best) {
+    bool found = false;
+    for (std::size_t i = 0; i < count; ++i) {
+        const PlaneRecord &pl = planes[i];
+        if (!((c.layerMask >> pl.layer) & 1u)) continue;
+        const float t = float(planeT(c.ray.origin, c.ray.direction, pl.normal, pl.offset));
+        if (!c.acceptsT(t)) continue;
+        if (AnyHit) {
+            if (c.acceptsPoint(t, pl.layer)) return true;
+            continue;
+        }
+        found |= best.offer(c, analyticCandidate(GeometryKind::Plane, t, pl.layer, pl.geometry), analyticTError(t));
+    }
+    return found;
 }
 
 /// Bits of the lanes whose triangle is in one of the query's layers.

@@ -9,6 +9,7 @@
 #include "LeafIntersection.h"
 #include "NearestHit.h"
 #include "PacketSetup.h"
+#include "PlaneRecord.h"
 #include "RayContext.h"
 #include "WideBvh.h"
 
@@ -29,13 +30,6 @@
 namespace mvcl {
 
 namespace detail {
-
-struct PlaneRecord {
-    glm::vec3 normal;
-    float offset;
-    uint32_t geometry;
-    uint8_t layer;
-};
 
 /// |v| with every product rounded on its own: the contact window must not depend on FMA
 /// contraction (FloatBits.h).
@@ -66,8 +60,9 @@ struct Tracer::Private {
     template <bool AnyHit, class Best>
     bool traverse(const detail::RayContext &c, Best &best) const {
         if constexpr (AnyHit) return singleRays.occluded(wide, c, best);
-        else if constexpr (std::is_same_v<Best, detail::NearestHit>) return singleRays.closestNearest(wide, c, best);
-        else return singleRays.closestLayered(wide, c, best);
+        else if constexpr (std::is_same_v<Best, detail::NearestHit>)
+            return singleRays.closestNearest(wide, planes.data(), planes.size(), c, best);
+        else return singleRays.closestLayered(wide, planes.data(), planes.size(), c, best);
     }
     /// Only when packetsPay().
     template <bool AnyHit, class Bests>
@@ -98,11 +93,10 @@ struct Tracer::Private {
     /// Tracer::anyHits() with, if `tMax` is not null, each ray's own upper bound.
     uint32_t anyHitsInPacket(const Tracer &tracer, std::span<const Ray> rays, const RayQuery &query,
                              const float *tMax) const;
+    /// The planes and the BVH (the kernel tests the planes first: their nearest hit caps the walk).
     template <class Best>
     bool closestHit(const detail::RayContext &c, Best &best, Hit &hit) const {
-        bool found = traverse<false>(c, best);
-        found |= testPlanes<false>(c, best);
-        return found && best.resolve(hit);
+        return traverse<false>(c, best) && best.resolve(hit);
     }
     template <class Best>
     bool closestHitBruteForce(const detail::RayContext &c, Best &best, Hit &hit) const;
@@ -130,19 +124,7 @@ struct Tracer::Private {
 
 template <bool AnyHit, class Best>
 bool Tracer::Private::testPlanes(const detail::RayContext &c, Best &best) const {
-    bool found = false;
-    for (const detail::PlaneRecord &pl : planes) {
-        if (!((c.layerMask >> pl.layer) & 1u)) continue;
-        const float t = float(detail::planeT(c.ray.origin, c.ray.direction, pl.normal, pl.offset));
-        if (!c.acceptsT(t)) continue;
-        const Hit cand = detail::analyticCandidate(GeometryKind::Plane, t, pl.layer, pl.geometry);
-        if (AnyHit) {
-            if (c.acceptsPoint(t, pl.layer)) return true;
-            continue;
-        }
-        found |= best.offer(c, cand, detail::analyticTError(t));
-    }
-    return found;
+    return detail::testPlanes<AnyHit>(planes.data(), planes.size(), c, best);
 }
 
 } // namespace mvcl
