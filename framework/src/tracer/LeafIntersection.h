@@ -150,7 +150,7 @@ inline int triangleLanes(const PrimBlock &block, uint32_t layerMask) {
 /// Tests the primitives of one leaf. For closest hit (AnyHit = false) offers the hits to `best`
 /// and returns true if it changed; for any hit returns true on the first accepted hit.
 template <bool AnyHit, class Best>
-inline bool testLeaf(uint32_t leaf, const PrimBlock *blocks, const PrimInfo *info,
+MVCL_KERNEL_INLINE bool testLeaf(uint32_t leaf, const PrimBlock *blocks, const PrimInfo *info,
                      const RayContext &c, const WatertightRay4 &wray, Best &best) {
     const uint32_t first = WideLeaf::firstBlock(leaf);
     const uint32_t last = first + WideLeaf::blockCount(leaf);
