@@ -32,20 +32,24 @@ using detail::PrimKind;
 using detail::RayContext;
 
 bool Tracer::Private::closestHitInRange(const Ray &ray, const RayQuery &query, Hit &hit, Oracle oracle) const {
+    if (oracle == Oracle::Traversal)
+        return isLayered(query) ? singleRays.queryLayered(wide, planes.data(), planes.size(), ray, query,
+                                                          contactWindow(ray), hit)
+                                : singleRays.queryNearest(wide, planes.data(), planes.size(), ray, query, hit);
     const RayContext c(ray, query);
     if (isLayered(query)) {
-        detail::LayerPriorityHit best = layerPriority(ray);
-        return oracle == Oracle::BruteForce ? closestHitBruteForce(c, best, hit) : closestHit(c, best, hit);
+        detail::LayerPriorityHit best(contactWindow(ray));
+        return closestHitBruteForce(c, best, hit);
     }
     detail::NearestHit best;
-    return oracle == Oracle::BruteForce ? closestHitBruteForce(c, best, hit) : closestHit(c, best, hit);
+    return closestHitBruteForce(c, best, hit);
 }
 
 bool Tracer::Private::anyHitInRange(const Ray &ray, const RayQuery &query) const {
     const RayContext c(ray, query);
     // Any hit ends the query whichever layer it is on: layer priority never changes occlusion.
     detail::NearestHit unused;
-    return testPlanes<true>(c, unused) || traverse<true>(c, unused);
+    return testPlanes<true>(c, unused) || occluded(c);
 }
 
 bool Tracer::Private::touchesOuterLayer(const Tracer &tracer, const Ray &ray, const Hit &hit,
@@ -90,17 +94,10 @@ bool Tracer::closestHit(const Ray &ray, const RayQuery &query, Hit &hit) const {
 
 bool Tracer::Private::closestHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, Hit &hit) const {
     if (!detail::isValidQuery(ray, query)) return false;
-    if (!isLayered(query)) {
-        // One layer: the plain nearest hit, the code and the cost of before layer priority.
-        const RayContext c(ray, query);
-        detail::NearestHit best;
-        return closestHit(c, best, hit);
-    }
-    if (!(contactDistance > 0.f)) {
-        const RayContext c(ray, query);
-        detail::LayerPriorityHit best(0.f);
-        return closestHit(c, best, hit);
-    }
+    // One layer: the plain nearest hit, the code and the cost of before layer priority.
+    if (!isLayered(query)) return singleRays.queryNearest(wide, planes.data(), planes.size(), ray, query, hit);
+    if (!(contactDistance > 0.f))
+        return singleRays.queryLayered(wide, planes.data(), planes.size(), ray, query, 0.f, hit);
     return closestHitWithContact(tracer, ray, query, hit, Oracle::Traversal);
 }
 
@@ -117,7 +114,7 @@ bool Tracer::Private::anyHitQuery(const Tracer &tracer, const Ray &ray, const Ra
     if (!(contactDistance > 0.f) || !isLayered(query)) {
         const RayContext c(ray, query, end);
         detail::NearestHit unused;
-        return testPlanes<true>(c, unused) || traverse<true>(c, unused);
+        return testPlanes<true>(c, unused) || occluded(c);
     }
     // With a contact tolerance an inner layer's surface within the tolerance of an outer layer's
     // does not occlude (the facets of differently triangulated touching layers poke through each

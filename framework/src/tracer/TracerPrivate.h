@@ -57,12 +57,10 @@ struct Tracer::Private {
 
     Private(const Scene &s, const TracerSettings &st) : scene(s), settings(st) {}
 
-    template <bool AnyHit, class Best>
-    bool traverse(const detail::RayContext &c, Best &best) const {
-        if constexpr (AnyHit) return singleRays.occluded(wide, c, best);
-        else if constexpr (std::is_same_v<Best, detail::NearestHit>)
-            return singleRays.closestNearest(wide, planes.data(), planes.size(), c, best);
-        else return singleRays.closestLayered(wide, planes.data(), planes.size(), c, best);
+    /// Any hit over the BVH (closest hits go through singleRays.queryNearest and queryLayered).
+    bool occluded(const detail::RayContext &c) const {
+        detail::NearestHit unused;
+        return singleRays.occluded(wide, c, unused);
     }
     /// Only when packetsPay().
     template <bool AnyHit, class Bests>
@@ -86,18 +84,13 @@ struct Tracer::Private {
         const uint32_t live = layers & query.layerMask;
         return (live & (live - 1)) != 0;
     }
-    /// The closest-hit state for a layered query on `ray`.
-    detail::LayerPriorityHit layerPriority(const Ray &ray) const {
-        return detail::LayerPriorityHit(contactDistance > 0.f ? contactDistance / detail::lengthUnfused(ray.direction) : 0.f);
+    /// The contact window of a layered query on `ray` (LayerPriorityHit's, in units of its t).
+    float contactWindow(const Ray &ray) const {
+        return contactDistance > 0.f ? contactDistance / detail::lengthUnfused(ray.direction) : 0.f;
     }
     /// Tracer::anyHits() with, if `tMax` is not null, each ray's own upper bound.
     uint32_t anyHitsInPacket(const Tracer &tracer, std::span<const Ray> rays, const RayQuery &query,
                              const float *tMax) const;
-    /// The planes and the BVH (the kernel tests the planes first: their nearest hit caps the walk).
-    template <class Best>
-    bool closestHit(const detail::RayContext &c, Best &best, Hit &hit) const {
-        return traverse<false>(c, best) && best.resolve(hit);
-    }
     template <class Best>
     bool closestHitBruteForce(const detail::RayContext &c, Best &best, Hit &hit) const;
 

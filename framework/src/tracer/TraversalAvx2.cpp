@@ -19,8 +19,7 @@ namespace mvcl::detail {
 
 namespace {
 // The walk's instances themselves, no wrapper: a call less per query.
-constinit const SingleRayKernels kTable{"avx2", closestWalk<NearestHit>, closestWalk<LayerPriorityHit>,
-                                        anyHitWalk};
+constinit const SingleRayKernels kTable{"avx2", queryNearest, queryLayered, anyHitWalk};
 } // namespace
 
 constinit const SingleRayKernels *const kSingleRayKernelsAvx2 = &kTable;

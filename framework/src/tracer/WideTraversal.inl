@@ -8,6 +8,7 @@
 // compare). Everything here lands in the unit's own namespace (KernelIsa.h).
 
 #include "KernelIsa.h"
+#include "LayerPriorityHit.h"
 #include "LeafIntersection.h"
 #include "NearestHit.h"
 #include "PlaneRecord.h"
@@ -15,6 +16,9 @@
 #include "WatertightTriangle4.h"
 #include "WideBvh.h"
 
+#include <mvcl/tracer/Hit.h>
+#include <mvcl/tracer/Ray.h>
+#include <mvcl/tracer/RayQuery.h>
 #include <mvcl/tracer/TriangleIntersection.h>
 
 #include <algorithm>
@@ -243,9 +247,10 @@ inline bool anyHitWalk(const WideBvh &wide, const RayContext &c, NearestHit &unu
 }
 
 /// Closest hit over the planes [planes, planes + planeCount) and the wide BVH: offers candidates
-/// to `best` (a NearestHit or a LayerPriorityHit) and returns whether it changed.
+/// to `best` (a NearestHit or a LayerPriorityHit) and returns whether it changed. Inlined into
+/// the query entries below, which set up the query in the walk's instruction set.
 template <class Best>
-bool closestWalk(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const RayContext &c,
+MVCL_KERNEL_INLINE bool closestWalk(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const RayContext &c,
                  Best &best) {
     // The planes first: a plane in front (the floor under a scene) caps the walk from its start,
     // and the cap only culls boxes beyond a hit that is already there (the result is a function
@@ -359,6 +364,22 @@ bool closestWalk(const WideBvh &wide, const PlaneRecord *planes, std::size_t pla
             }
         }
     }
+}
+
+/// SingleRayKernels::queryNearest: a whole closest-hit query of one layer.
+inline bool queryNearest(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const Ray &ray,
+                         const RayQuery &query, Hit &hit) {
+    const RayContext c(ray, query);
+    NearestHit best;
+    return closestWalk(wide, planes, planeCount, c, best) && best.resolve(hit);
+}
+
+/// SingleRayKernels::queryLayered: a whole closest-hit query with layer priority.
+inline bool queryLayered(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const Ray &ray,
+                         const RayQuery &query, float contactWindow, Hit &hit) {
+    const RayContext c(ray, query);
+    LayerPriorityHit best(contactWindow);
+    return closestWalk(wide, planes, planeCount, c, best) && best.resolve(hit);
 }
 
 } // namespace MVCL_ISA_NAMESPACE
