@@ -38,15 +38,15 @@ struct PacketBests;
 /// The single-ray walk of the wide BVH (WideTraversal.inl), one entry per closest-hit state.
 struct SingleRayKernels {
     const char *name; ///< what Tracer::singleRayIsa() reports
-    /// A whole closest-hit query (valid: isValidQuery()) over the planes [planes, planes +
-    /// planeCount) and the BVH: its RayContext and closest-hit state made in the kernel's own
-    /// instruction set, the result resolved into `hit`; true if there is one. queryLayered is for
-    /// queries that reach two layers or more (LayerPriorityHit with `contactWindow`), queryNearest
-    /// for the others (NearestHit).
+    /// A whole closest-hit query over the planes [planes, planes + planeCount) and the BVH, under
+    /// `query` with the range [tMin, tMax] (valid: isValidQuery()): its RayContext and closest-hit
+    /// state made in the kernel's own instruction set, the result resolved into `hit`; true if
+    /// there is one. queryLayered is for queries that reach two layers or more (LayerPriorityHit
+    /// with `contactWindow`), queryNearest for the others (NearestHit).
     bool (*queryNearest)(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const Ray &ray,
-                         const RayQuery &query, Hit &hit);
+                         const RayQuery &query, float tMin, float tMax, Hit &hit);
     bool (*queryLayered)(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const Ray &ray,
-                         const RayQuery &query, float contactWindow, Hit &hit);
+                         const RayQuery &query, float tMin, float tMax, float contactWindow, Hit &hit);
     /// Any hit: true on the first accepted hit (`unused` is only there for the type).
     bool (*occluded)(const WideBvh &wide, const RayContext &c, NearestHit &unused);
 };

@@ -76,10 +76,13 @@ struct RayContext {
     const RayQuery *query;
     bool hasClips;
 
-    MVCL_KERNEL_INLINE RayContext(const Ray &r, const RayQuery &q) : RayContext(r, q, q.tMax) {}
+    MVCL_KERNEL_INLINE RayContext(const Ray &r, const RayQuery &q) : RayContext(r, q, q.tMin, q.tMax) {}
     /// The query with its range ending at `rangeEnd` instead of q.tMax (a shadow ray's own length).
     MVCL_KERNEL_INLINE RayContext(const Ray &r, const RayQuery &q, float rangeEnd)
-        : ray(r), tMin(q.tMin), tMax(rangeEnd), layerMask(q.layerMask), query(&q),
+        : RayContext(r, q, q.tMin, rangeEnd) {}
+    /// The query with the range [rangeStart, rangeEnd] instead of its own (a step of a walk).
+    MVCL_KERNEL_INLINE RayContext(const Ray &r, const RayQuery &q, float rangeStart, float rangeEnd)
+        : ray(r), tMin(rangeStart), tMax(rangeEnd), layerMask(q.layerMask), query(&q),
           hasClips(q.clipCount() > 0) {
 #if defined(__SSE2__)
         // One divps instead of three divss (same correctly rounded quotients per lane).

@@ -108,8 +108,10 @@ struct Tracer::Private {
     bool closestHitWithContact(const Tracer &tracer, const Ray &ray, const RayQuery &query, Hit &hit,
                                Oracle oracle) const;
     /// Tracer::closestHit() and anyHit() without the query log: what their packet forms call
-    /// ray by ray (those calls are logged once, as packets).
-    bool closestHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, Hit &hit) const;
+    /// ray by ray (those calls are logged once, as packets). closestHitQuery runs `query` with the
+    /// range [tMin, tMax] instead of its own.
+    bool closestHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, float tMin, float tMax,
+                         Hit &hit) const;
     bool anyHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, float tMax) const;
     /// Tracer::setQueryLog(): where the public queries are recorded, if anywhere.
     std::atomic<TracerQueryLog *> queryLog{nullptr};

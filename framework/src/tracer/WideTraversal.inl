@@ -250,8 +250,8 @@ inline bool anyHitWalk(const WideBvh &wide, const RayContext &c, NearestHit &unu
 /// to `best` (a NearestHit or a LayerPriorityHit) and returns whether it changed. Inlined into
 /// the query entries below, which set up the query in the walk's instruction set.
 template <class Best>
-MVCL_KERNEL_INLINE bool closestWalk(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const RayContext &c,
-                 Best &best) {
+MVCL_KERNEL_INLINE bool closestWalk(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount,
+                                    const RayContext &c, Best &best) {
     // The planes first: a plane in front (the floor under a scene) caps the walk from its start,
     // and the cap only culls boxes beyond a hit that is already there (the result is a function
     // of the candidate set, not of their order).
@@ -368,16 +368,16 @@ MVCL_KERNEL_INLINE bool closestWalk(const WideBvh &wide, const PlaneRecord *plan
 
 /// SingleRayKernels::queryNearest: a whole closest-hit query of one layer.
 inline bool queryNearest(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const Ray &ray,
-                         const RayQuery &query, Hit &hit) {
-    const RayContext c(ray, query);
+                         const RayQuery &query, float tMin, float tMax, Hit &hit) {
+    const RayContext c(ray, query, tMin, tMax);
     NearestHit best;
     return closestWalk(wide, planes, planeCount, c, best) && best.resolve(hit);
 }
 
 /// SingleRayKernels::queryLayered: a whole closest-hit query with layer priority.
 inline bool queryLayered(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const Ray &ray,
-                         const RayQuery &query, float contactWindow, Hit &hit) {
-    const RayContext c(ray, query);
+                         const RayQuery &query, float tMin, float tMax, float contactWindow, Hit &hit) {
+    const RayContext c(ray, query, tMin, tMax);
     LayerPriorityHit best(contactWindow);
     return closestWalk(wide, planes, planeCount, c, best) && best.resolve(hit);
 }
