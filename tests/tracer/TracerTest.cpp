@@ -1,6 +1,7 @@
 #include <mvcl/tracer/Tracer.h>
 
 #include <mvcl/core/FloatBits.h>
+#include <mvcl/model/BuiltinScenes.h>
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/RayOffset.h>
 
@@ -12,6 +13,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -266,6 +268,33 @@ TEST(Tracer, DistanceWindowHonoured) {
     q.tMax = 10.8f;
     EXPECT_FALSE(tracer.closestHit(ray, q, h));
     EXPECT_FALSE(tracer.anyHit(ray, q));
+}
+
+/// closestHit() with a range beside the query answers as the query holding that range would,
+/// bit for bit: on cube-in-cube (two layers, spheres, a plane) with and without a contact
+/// tolerance, and on a soup of one layer, for random rays, queries and ranges.
+TEST(Tracer, ClosestHitWithARangeIsTheQueryWithThatRange) {
+    std::mt19937 rng(2026);
+    std::uniform_real_distribution<float> range(-1.f, 8.f);
+    const Scene cubes = makeBuiltinScene("cube-in-cube");
+    Scene touching = cubes;
+    touching.layerContact = {0.05, LayerContact::Measure::SceneUnits};
+    const Scene soup = makeSoup(2000, 5);
+    for (const Scene *scene : {&cubes, static_cast<const Scene *>(&touching), &soup}) {
+        const Tracer tracer(*scene);
+        for (int i = 0; i < 3000; ++i) {
+            const Ray ray = randomRay(rng, 4.f);
+            const RayQuery q = i % 2 ? randomQuery(rng) : RayQuery{};
+            const float tMin = i % 3 ? range(rng) : -kInf, tMax = i % 5 ? range(rng) : kInf;
+            RayQuery within = q;
+            within.tMin = std::max(q.tMin, tMin);
+            within.tMax = std::min(q.tMax, tMax);
+            Hit a, b;
+            const bool fa = tracer.closestHit(ray, q, tMin, tMax, a);
+            const bool fb = tracer.closestHit(ray, within, b);
+            expectSameHit(fa, a, fb, b, scene->name + " ray " + std::to_string(i));
+        }
+    }
 }
 
 TEST(Tracer, ClipVolumes) {

@@ -63,6 +63,8 @@ constexpr uint32_t kMinParallelPrims = 4096;
 constexpr uint32_t kMinParallelBinning = 65536;
 /// SAH cost of a node visit relative to one block (four primitives) of a leaf.
 constexpr double kTraversalCost = 1.0;
+/// SAH cost of a sphere in a leaf, beyond its lane of a block (see build()).
+constexpr double kSphereCost = 1.0;
 
 uint32_t blocksOf(uint32_t count) { return (count + kBlockSize - 1) / kBlockSize; }
 
@@ -125,8 +127,9 @@ class Builder {
 public:
     /// tasks: where subtrees are pushed (null: build everything on the calling thread). All
     /// calls then run inside the worker arena the group's tasks are spawned in.
-    Builder(BuildPrim *prims, BvhNode *slots, int maxLeaf, tbb::task_group *tasks)
-        : m_prims(prims), m_slots(slots), m_maxLeaf(maxLeaf), m_tasks(tasks) {}
+    /// records: the primitives the BuildPrims' ids index (their kinds price the leaves).
+    Builder(BuildPrim *prims, const PrimArray &records, BvhNode *slots, int maxLeaf, tbb::task_group *tasks)
+        : m_prims(prims), m_records(records), m_slots(slots), m_maxLeaf(maxLeaf), m_tasks(tasks) {}
 
     /// Builds the subtree of [begin, end) into `slot`; `bounds` are that range's bounds.
     void build(uint32_t slot, uint32_t begin, uint32_t end, int depth, const RangeBounds &bounds) {
@@ -138,9 +141,19 @@ public:
         noteDepth(depth);
 
         const uint32_t n = end - begin;
+        // A leaf costs its blocks, and each sphere as much again as a block: the 4-wide triangle
+        // test takes a block at once, but a sphere's roots are a chain of divisions and a square
+        // root in double. Priced as one lane, cube-in-cube's two spheres shared a leaf with two
+        // triangles, its box spanning both spheres: nine leaf visits in ten went there and paid
+        // both spheres (docs/benchmarks.md).
+        const double leafCost = n <= uint32_t(m_maxLeaf)
+                                    ? double(blocksOf(n)) + kSphereCost * double(spheresIn(begin, end))
+                                    : std::numeric_limits<double>::infinity();
         // A split costs the traversal step plus at least one block per side, more than the
-        // single block of a leaf of up to four: such a node is a leaf whatever findSplit finds.
-        if (n <= std::min<uint32_t>(uint32_t(m_maxLeaf), kBlockSize)) return makeLeaf(node, begin, n);
+        // single block of a leaf of up to four triangles: such a node is a leaf whatever
+        // findSplit finds.
+        if (n <= std::min<uint32_t>(uint32_t(m_maxLeaf), kBlockSize) && leafCost <= 1.0)
+            return makeLeaf(node, begin, n);
 
         // Fewer bins for small nodes: initialising 3 × 32 bins dominates the cost near the leaves.
         Binner binner{clo, glm::vec3(0.f), int(std::min<uint32_t>(kBins, std::max<uint32_t>(4, n)))};
@@ -159,8 +172,7 @@ public:
         const double splitCost =
             bestAxis >= 0 && area > 0.0 ? kTraversalCost + bestCost / area
                                         : std::numeric_limits<double>::infinity();
-        if (n <= uint32_t(m_maxLeaf) && double(blocksOf(n)) <= splitCost)
-            return makeLeaf(node, begin, n);
+        if (n <= uint32_t(m_maxLeaf) && leafCost <= splitCost) return makeLeaf(node, begin, n);
 
         uint32_t mid;
         RangeBounds left, right;
@@ -302,6 +314,13 @@ private:
         }
     }
 
+    /// Spheres among the primitives [begin, end) (only asked for ranges that may be leaves).
+    uint32_t spheresIn(uint32_t begin, uint32_t end) const {
+        uint32_t spheres = 0;
+        for (uint32_t i = begin; i < end; ++i) spheres += m_records[m_prims[i].id].kind == uint8_t(PrimKind::Sphere);
+        return spheres;
+    }
+
     void makeLeaf(BvhNode &node, uint32_t begin, uint32_t n) {
         node.index = (n << BvhNode::kCountShift) | begin;
         uint32_t mask = 0;
@@ -317,6 +336,7 @@ private:
     }
 
     BuildPrim *m_prims;
+    const PrimArray &m_records;
     BvhNode *m_slots;
     int m_maxLeaf;
     tbb::task_group *m_tasks;
@@ -403,13 +423,13 @@ Bvh buildBvh(BvhBuildInput input) {
         // calling thread, and wait() belongs in the same one.
         workerArena(input.threads).execute([&] {
             tbb::task_group tasks;
-            Builder builder(build, bvh.nodes.get(), maxLeaf, &tasks);
+            Builder builder(build, input.prims, bvh.nodes.get(), maxLeaf, &tasks);
             tasks.run_and_wait([&] { builder.build(0, 0, uint32_t(n), 0, rootBounds); });
             builder.finishLayerMasks();
             keepStats(builder);
         });
     } else {
-        Builder builder(build, bvh.nodes.get(), maxLeaf, nullptr);
+        Builder builder(build, input.prims, bvh.nodes.get(), maxLeaf, nullptr);
         builder.build(0, 0, uint32_t(n), 0, rootBounds);
         keepStats(builder);
     }

@@ -10,7 +10,14 @@
 
 #include "KernelIsa.h"
 
+#include <cstddef>
 #include <cstdint>
+
+namespace mvcl {
+struct Hit;
+struct Ray;
+struct RayQuery;
+} // namespace mvcl
 
 namespace mvcl::detail {
 
@@ -20,6 +27,7 @@ struct BuildPrim;
 class LayerPriorityHit;
 class NearestHit;
 struct PacketSetup;
+struct PlaneRecord;
 struct RangeBounds;
 struct RayContext;
 struct UnusedBests;
@@ -30,9 +38,15 @@ struct PacketBests;
 /// The single-ray walk of the wide BVH (WideTraversal.inl), one entry per closest-hit state.
 struct SingleRayKernels {
     const char *name; ///< what Tracer::singleRayIsa() reports
-    /// Closest hit: offers every candidate to `best`; true if it changed.
-    bool (*closestNearest)(const WideBvh &wide, const RayContext &c, NearestHit &best);
-    bool (*closestLayered)(const WideBvh &wide, const RayContext &c, LayerPriorityHit &best);
+    /// A whole closest-hit query over the planes [planes, planes + planeCount) and the BVH, under
+    /// `query` with the range [tMin, tMax] (valid: isValidQuery()): its RayContext and closest-hit
+    /// state made in the kernel's own instruction set, the result resolved into `hit`; true if
+    /// there is one. queryLayered is for queries that reach two layers or more (LayerPriorityHit
+    /// with `contactWindow`), queryNearest for the others (NearestHit).
+    bool (*queryNearest)(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const Ray &ray,
+                         const RayQuery &query, float tMin, float tMax, Hit &hit);
+    bool (*queryLayered)(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const Ray &ray,
+                         const RayQuery &query, float tMin, float tMax, float contactWindow, Hit &hit);
     /// Any hit: true on the first accepted hit (`unused` is only there for the type).
     bool (*occluded)(const WideBvh &wide, const RayContext &c, NearestHit &unused);
 };

@@ -7,6 +7,7 @@
 
 #include "AnalyticShapes.h"
 #include "KernelIsa.h"
+#include "PlaneRecord.h"
 #include "PrimBlock.h"
 #include "RayContext.h"
 #include "WatertightTriangle.h"
@@ -19,6 +20,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #if defined(__SSE2__)
@@ -81,15 +83,11 @@ inline Hit analyticCandidate(GeometryKind kind, float t, uint8_t layer, uint32_t
     return cand;
 }
 
-/// Tests the sphere in lane `lane` of a block. For closest hit (AnyHit = false) offers its hits
-/// to `best` and returns true if it changed; for any hit returns true on the first accepted hit.
+/// Offers the roots of one sphere (ascending). For closest hit (AnyHit = false) offers its hits to
+/// `best` and returns true if it changed; for any hit returns true on the first accepted hit.
 template <bool AnyHit, class Best>
-inline bool testSphere(const PrimBlock &block, int lane, const PrimInfo &info,
-                       const RayContext &c, Best &best) {
-    double roots[2];
-    const int n = sphereRoots(c.ray.origin, c.ray.direction, block.vertex(lane, 0),
-                                      block.v[1][0][lane], roots);
-    for (int i = 0; i < n; ++i) {
+inline bool offerSphereRoots(const double roots[2], const PrimInfo &info, const RayContext &c, Best &best) {
+    for (int i = 0; i < 2; ++i) {
         const float t = float(roots[i]);
         if (!c.acceptsT(t)) continue;
         const Hit cand = analyticCandidate(GeometryKind::Sphere, t, info.layer, info.geometry);
@@ -103,6 +101,35 @@ inline bool testSphere(const PrimBlock &block, int lane, const PrimInfo &info,
         if (best.offer(c, cand, analyticTError(t))) return true;
     }
     return false;
+}
+
+/// Tests the sphere in lane `lane` of a block (offerSphereRoots()'s result).
+template <bool AnyHit, class Best>
+inline bool testSphere(const PrimBlock &block, int lane, const PrimInfo &info,
+                       const RayContext &c, Best &best) {
+    double roots[2];
+    if (sphereRoots(c.ray.origin, c.ray.direction, block.vertex(lane, 0), block.v[1][0][lane], roots) != 2)
+        return false;
+    return offerSphereRoots<AnyHit>(roots, info, c, best);
+}
+
+/// Tests the planes [planes, planes + count). For closest hit (AnyHit = false) offers their hits to
+/// `best` and returns true if it changed; for any hit returns true on the first accepted hit.
+template <bool AnyHit, class Best>
+inline bool testPlanes(const PlaneRecord *planes, std::size_t count, const RayContext &c, Best &best) {
+    bool found = false;
+    for (std::size_t i = 0; i < count; ++i) {
+        const PlaneRecord &pl = planes[i];
+        if (!((c.layerMask >> pl.layer) & 1u)) continue;
+        const float t = float(planeT(c.ray.origin, c.ray.direction, pl.normal, pl.offset));
+        if (!c.acceptsT(t)) continue;
+        if (AnyHit) {
+            if (c.acceptsPoint(t, pl.layer)) return true;
+            continue;
+        }
+        found |= best.offer(c, analyticCandidate(GeometryKind::Plane, t, pl.layer, pl.geometry), analyticTError(t));
+    }
+    return found;
 }
 
 /// Bits of the lanes whose triangle is in one of the query's layers.
@@ -123,7 +150,7 @@ inline int triangleLanes(const PrimBlock &block, uint32_t layerMask) {
 /// Tests the primitives of one leaf. For closest hit (AnyHit = false) offers the hits to `best`
 /// and returns true if it changed; for any hit returns true on the first accepted hit.
 template <bool AnyHit, class Best>
-inline bool testLeaf(uint32_t leaf, const PrimBlock *blocks, const PrimInfo *info,
+MVCL_KERNEL_INLINE bool testLeaf(uint32_t leaf, const PrimBlock *blocks, const PrimInfo *info,
                      const RayContext &c, const WatertightRay4 &wray, Best &best) {
     const uint32_t first = WideLeaf::firstBlock(leaf);
     const uint32_t last = first + WideLeaf::blockCount(leaf);
@@ -151,16 +178,28 @@ inline bool testLeaf(uint32_t leaf, const PrimBlock *blocks, const PrimInfo *inf
         }
     }
     if (WideLeaf::hasSpheres(leaf)) {
-        for (uint32_t b = first; b < last; ++b)
+        for (uint32_t b = first; b < last; ++b) {
+            int sphereLanes = 0;
             for (int lane = 0; lane < 4; ++lane) {
                 const PrimInfo &pi = info[4 * b + lane];
-                if (pi.kind != uint8_t(PrimKind::Sphere) || !((c.layerMask >> pi.layer) & 1u))
-                    continue;
-                if (testSphere<AnyHit>(blocks[b], lane, pi, c, best)) {
+                if (pi.kind == uint8_t(PrimKind::Sphere) && ((c.layerMask >> pi.layer) & 1u))
+                    sphereLanes |= 1 << lane;
+            }
+            if (!sphereLanes) continue;
+            // The block's spheres at once; their roots are offered lane by lane, as one by one.
+            const PrimBlock &block = blocks[b];
+            double t0[4], t1[4];
+            for (int rest = sphereRoots4(c.ray.origin, c.ray.direction, block.v[0][0], block.v[0][1], block.v[0][2],
+                                         block.v[1][0], sphereLanes, t0, t1);
+                 rest; rest &= rest - 1) {
+                const int lane = std::countr_zero(unsigned(rest));
+                const double roots[2] = {t0[lane], t1[lane]};
+                if (offerSphereRoots<AnyHit>(roots, info[4 * b + lane], c, best)) {
                     if (AnyHit) return true;
                     found = true;
                 }
             }
+        }
     }
     return found;
 }

@@ -32,20 +32,25 @@ using detail::PrimKind;
 using detail::RayContext;
 
 bool Tracer::Private::closestHitInRange(const Ray &ray, const RayQuery &query, Hit &hit, Oracle oracle) const {
+    if (oracle == Oracle::Traversal)
+        return isLayered(query) ? singleRays.queryLayered(wide, planes.data(), planes.size(), ray, query, query.tMin,
+                                                          query.tMax, contactWindow(ray), hit)
+                                : singleRays.queryNearest(wide, planes.data(), planes.size(), ray, query, query.tMin,
+                                                          query.tMax, hit);
     const RayContext c(ray, query);
     if (isLayered(query)) {
-        detail::LayerPriorityHit best = layerPriority(ray);
-        return oracle == Oracle::BruteForce ? closestHitBruteForce(c, best, hit) : closestHit(c, best, hit);
+        detail::LayerPriorityHit best(contactWindow(ray));
+        return closestHitBruteForce(c, best, hit);
     }
     detail::NearestHit best;
-    return oracle == Oracle::BruteForce ? closestHitBruteForce(c, best, hit) : closestHit(c, best, hit);
+    return closestHitBruteForce(c, best, hit);
 }
 
 bool Tracer::Private::anyHitInRange(const Ray &ray, const RayQuery &query) const {
     const RayContext c(ray, query);
     // Any hit ends the query whichever layer it is on: layer priority never changes occlusion.
     detail::NearestHit unused;
-    return testPlanes<true>(c, unused) || traverse<true>(c, unused);
+    return testPlanes<true>(c, unused) || occluded(c);
 }
 
 bool Tracer::Private::touchesOuterLayer(const Tracer &tracer, const Ray &ray, const Hit &hit,
@@ -85,23 +90,34 @@ bool Tracer::Private::closestHitWithContact(const Tracer &tracer, const Ray &ray
 
 bool Tracer::closestHit(const Ray &ray, const RayQuery &query, Hit &hit) const {
     if (TracerQueryLog *log = d->queryLog.load(std::memory_order_relaxed)) log->recordClosestHit(ray, query);
-    return d->closestHitQuery(*this, ray, query, hit);
+    return d->closestHitQuery(*this, ray, query, query.tMin, query.tMax, hit);
 }
 
-bool Tracer::Private::closestHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, Hit &hit) const {
-    if (!detail::isValidQuery(ray, query)) return false;
-    if (!isLayered(query)) {
-        // One layer: the plain nearest hit, the code and the cost of before layer priority.
-        const RayContext c(ray, query);
-        detail::NearestHit best;
-        return closestHit(c, best, hit);
+bool Tracer::closestHit(const Ray &ray, const RayQuery &query, float tMin, float tMax, Hit &hit) const {
+    const float start = std::max(query.tMin, tMin), end = std::min(query.tMax, tMax);
+    if (TracerQueryLog *log = d->queryLog.load(std::memory_order_relaxed)) {
+        // Recorded as the plain query with this range (only while a log is attached: a copy).
+        RayQuery within = query;
+        within.tMin = start;
+        within.tMax = end;
+        log->recordClosestHit(ray, within);
     }
-    if (!(contactDistance > 0.f)) {
-        const RayContext c(ray, query);
-        detail::LayerPriorityHit best(0.f);
-        return closestHit(c, best, hit);
-    }
-    return closestHitWithContact(tracer, ray, query, hit, Oracle::Traversal);
+    return d->closestHitQuery(*this, ray, query, start, end, hit);
+}
+
+bool Tracer::Private::closestHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, float tMin,
+                                      float tMax, Hit &hit) const {
+    if (!detail::isValidQuery(ray, tMin, tMax)) return false;
+    // One layer: the plain nearest hit, the code and the cost of before layer priority.
+    if (!isLayered(query))
+        return singleRays.queryNearest(wide, planes.data(), planes.size(), ray, query, tMin, tMax, hit);
+    if (!(contactDistance > 0.f))
+        return singleRays.queryLayered(wide, planes.data(), planes.size(), ray, query, tMin, tMax, 0.f, hit);
+    // The contact tolerance re-queries with a raised tMin: it works on a copy anyway.
+    RayQuery within = query;
+    within.tMin = tMin;
+    within.tMax = tMax;
+    return closestHitWithContact(tracer, ray, within, hit, Oracle::Traversal);
 }
 
 bool Tracer::anyHit(const Ray &ray, const RayQuery &query) const { return anyHit(ray, query, query.tMax); }
@@ -117,7 +133,7 @@ bool Tracer::Private::anyHitQuery(const Tracer &tracer, const Ray &ray, const Ra
     if (!(contactDistance > 0.f) || !isLayered(query)) {
         const RayContext c(ray, query, end);
         detail::NearestHit unused;
-        return testPlanes<true>(c, unused) || traverse<true>(c, unused);
+        return testPlanes<true>(c, unused) || occluded(c);
     }
     // With a contact tolerance an inner layer's surface within the tolerance of an outer layer's
     // does not occlude (the facets of differently triangulated touching layers poke through each
@@ -167,7 +183,7 @@ uint32_t Tracer::closestHits(std::span<const Ray> rays, const RayQuery &query, s
         // The contact tolerance re-queries per ray (closestHitWithContact): ray by ray.
         uint32_t result = 0;
         for (std::size_t i = 0; i < rays.size(); ++i)
-            if (d->closestHitQuery(*this, rays[i], query, hits[i])) result |= 1u << i;
+            if (d->closestHitQuery(*this, rays[i], query, query.tMin, query.tMax, hits[i])) result |= 1u << i;
         return result;
     }
     if (layered)

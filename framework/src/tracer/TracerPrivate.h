@@ -9,6 +9,7 @@
 #include "LeafIntersection.h"
 #include "NearestHit.h"
 #include "PacketSetup.h"
+#include "PlaneRecord.h"
 #include "RayContext.h"
 #include "WideBvh.h"
 
@@ -29,13 +30,6 @@
 namespace mvcl {
 
 namespace detail {
-
-struct PlaneRecord {
-    glm::vec3 normal;
-    float offset;
-    uint32_t geometry;
-    uint8_t layer;
-};
 
 /// |v| with every product rounded on its own: the contact window must not depend on FMA
 /// contraction (FloatBits.h).
@@ -63,11 +57,10 @@ struct Tracer::Private {
 
     Private(const Scene &s, const TracerSettings &st) : scene(s), settings(st) {}
 
-    template <bool AnyHit, class Best>
-    bool traverse(const detail::RayContext &c, Best &best) const {
-        if constexpr (AnyHit) return singleRays.occluded(wide, c, best);
-        else if constexpr (std::is_same_v<Best, detail::NearestHit>) return singleRays.closestNearest(wide, c, best);
-        else return singleRays.closestLayered(wide, c, best);
+    /// Any hit over the BVH (closest hits go through singleRays.queryNearest and queryLayered).
+    bool occluded(const detail::RayContext &c) const {
+        detail::NearestHit unused;
+        return singleRays.occluded(wide, c, unused);
     }
     /// Only when packetsPay().
     template <bool AnyHit, class Bests>
@@ -91,19 +84,13 @@ struct Tracer::Private {
         const uint32_t live = layers & query.layerMask;
         return (live & (live - 1)) != 0;
     }
-    /// The closest-hit state for a layered query on `ray`.
-    detail::LayerPriorityHit layerPriority(const Ray &ray) const {
-        return detail::LayerPriorityHit(contactDistance > 0.f ? contactDistance / detail::lengthUnfused(ray.direction) : 0.f);
+    /// The contact window of a layered query on `ray` (LayerPriorityHit's, in units of its t).
+    float contactWindow(const Ray &ray) const {
+        return contactDistance > 0.f ? contactDistance / detail::lengthUnfused(ray.direction) : 0.f;
     }
     /// Tracer::anyHits() with, if `tMax` is not null, each ray's own upper bound.
     uint32_t anyHitsInPacket(const Tracer &tracer, std::span<const Ray> rays, const RayQuery &query,
                              const float *tMax) const;
-    template <class Best>
-    bool closestHit(const detail::RayContext &c, Best &best, Hit &hit) const {
-        bool found = traverse<false>(c, best);
-        found |= testPlanes<false>(c, best);
-        return found && best.resolve(hit);
-    }
     template <class Best>
     bool closestHitBruteForce(const detail::RayContext &c, Best &best, Hit &hit) const;
 
@@ -121,8 +108,10 @@ struct Tracer::Private {
     bool closestHitWithContact(const Tracer &tracer, const Ray &ray, const RayQuery &query, Hit &hit,
                                Oracle oracle) const;
     /// Tracer::closestHit() and anyHit() without the query log: what their packet forms call
-    /// ray by ray (those calls are logged once, as packets).
-    bool closestHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, Hit &hit) const;
+    /// ray by ray (those calls are logged once, as packets). closestHitQuery runs `query` with the
+    /// range [tMin, tMax] instead of its own.
+    bool closestHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, float tMin, float tMax,
+                         Hit &hit) const;
     bool anyHitQuery(const Tracer &tracer, const Ray &ray, const RayQuery &query, float tMax) const;
     /// Tracer::setQueryLog(): where the public queries are recorded, if anywhere.
     std::atomic<TracerQueryLog *> queryLog{nullptr};
@@ -130,19 +119,7 @@ struct Tracer::Private {
 
 template <bool AnyHit, class Best>
 bool Tracer::Private::testPlanes(const detail::RayContext &c, Best &best) const {
-    bool found = false;
-    for (const detail::PlaneRecord &pl : planes) {
-        if (!((c.layerMask >> pl.layer) & 1u)) continue;
-        const float t = float(detail::planeT(c.ray.origin, c.ray.direction, pl.normal, pl.offset));
-        if (!c.acceptsT(t)) continue;
-        const Hit cand = detail::analyticCandidate(GeometryKind::Plane, t, pl.layer, pl.geometry);
-        if (AnyHit) {
-            if (c.acceptsPoint(t, pl.layer)) return true;
-            continue;
-        }
-        found |= best.offer(c, cand, detail::analyticTError(t));
-    }
-    return found;
+    return detail::testPlanes<AnyHit>(planes.data(), planes.size(), c, best);
 }
 
 } // namespace mvcl

@@ -19,8 +19,7 @@ namespace mvcl::detail {
 
 namespace {
 // The walk's instances themselves, no wrapper: a call less per query.
-constinit const SingleRayKernels kTable{"avx2", traverse<false, NearestHit>, traverse<false, LayerPriorityHit>,
-                                        traverse<true, NearestHit>};
+constinit const SingleRayKernels kTable{"avx2", queryNearest, queryLayered, anyHitWalk};
 } // namespace
 
 constinit const SingleRayKernels *const kSingleRayKernelsAvx2 = &kTable;

@@ -6,36 +6,7 @@
 
 #include <cmath>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace mvcl {
-
-WatertightRay::WatertightRay(const Ray &ray) : origin(ray.origin) {
-    const glm::vec3 ad(std::fabs(ray.direction.x), std::fabs(ray.direction.y),
-                       std::fabs(ray.direction.z));
-    // kz = argmax |d|; ties go to the lower axis so the choice is deterministic.
-    kz = (ad.x >= ad.y && ad.x >= ad.z) ? 0 : (ad.y >= ad.z ? 1 : 2);
-    kx = kz + 1 == 3 ? 0 : kz + 1;
-    ky = kx + 1 == 3 ? 0 : kx + 1;
-    const float dz = ray.direction[kz];
-#if defined(__SSE2__)
-    // The three divisions as one divps: IEEE division is correctly rounded per lane and
-    // -a / b == (-a) / b exactly, so the results are those of the scalar lines below, for a
-    // third of the latency every query pays.
-    alignas(16) float q[4];
-    _mm_store_ps(q, _mm_div_ps(_mm_setr_ps(-ray.direction[kx], -ray.direction[ky], 1.f, 1.f),
-                               _mm_set1_ps(dz)));
-    sx = q[0];
-    sy = q[1];
-    sz = q[2];
-#else
-    sx = -ray.direction[kx] / dz;
-    sy = -ray.direction[ky] / dz;
-    sz = 1.f / dz;
-#endif
-}
 
 bool intersectTriangle(const WatertightRay &ray, const glm::vec3 &p0, const glm::vec3 &p1,
                        const glm::vec3 &p2, float tMin, float tMax, TriangleHit &hit) {

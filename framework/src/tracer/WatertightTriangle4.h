@@ -60,7 +60,7 @@ inline __m128 mulUnfused4(__m128 a, __m128 b) { return unfused(_mm_mul_ps(a, b))
 /// t, which is the same arithmetic either way. OrderingError = false leaves hit.tError of the
 /// vector lanes unwritten: only layer priority reads it.
 template <bool Barycentrics = true, bool OrderingError = false>
-inline int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, int lanes, float tMax,
+MVCL_KERNEL_INLINE int watertightIntersect4(const WatertightRay4 &r4, const PrimBlock &b, int lanes, float tMax,
                                 TriangleHit4 &hit) {
     const WatertightRay &r = r4.ray;
 #if defined(__SSE2__)

@@ -148,20 +148,20 @@ float WhittedIntegrator::lightPassing(const Ray &shadowRay, float lightDistance,
                                       ShadowStage stage) const {
     // Opaque occluders need only "is anything in the way" (any-hit, the cheap query).
     if (stage != ShadowStage::TransparentWalk) return m_tracer.anyHit(shadowRay, shadowQuery, lightDistance) ? 0.f : 1.f;
-    RayQuery query = shadowQuery;
-    query.tMax = std::min(query.tMax, lightDistance);
-
     // Transparent occluders let their transparency through (Whitted's transparent shadows):
-    // walk the hits along the same ray, each step starting just past the previous hit.
+    // walk the hits along the same ray, each step starting just past the previous hit. The steps
+    // pass their range beside the query, not in a copy of it (its clip volumes are 600 bytes).
+    const float tMax = std::min(shadowQuery.tMax, lightDistance);
+    float tMin = shadowQuery.tMin;
     constexpr int kMaxOccluders = 16;
     float passed = 1.f;
     for (int i = 0; i < kMaxOccluders; ++i) {
         Hit hit;
-        if (!m_tracer.closestHit(shadowRay, query, hit)) return passed;
+        if (!m_tracer.closestHit(shadowRay, shadowQuery, tMin, tMax, hit)) return passed;
         passed *= m_materials->transmittance(hit);
         if (passed <= 0.f) return 0.f;
-        query.tMin = nextFloatUp(hit.t);
-        if (query.tMin > query.tMax) return passed;
+        tMin = nextFloatUp(hit.t);
+        if (tMin > tMax) return passed;
     }
     return 0.f; // more occluders than we follow: treat the light as blocked
 }

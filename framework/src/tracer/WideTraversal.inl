@@ -8,16 +8,22 @@
 // compare). Everything here lands in the unit's own namespace (KernelIsa.h).
 
 #include "KernelIsa.h"
+#include "LayerPriorityHit.h"
 #include "LeafIntersection.h"
 #include "NearestHit.h"
+#include "PlaneRecord.h"
 #include "RayContext.h"
 #include "WatertightTriangle4.h"
 #include "WideBvh.h"
 
+#include <mvcl/tracer/Hit.h>
+#include <mvcl/tracer/Ray.h>
+#include <mvcl/tracer/RayQuery.h>
 #include <mvcl/tracer/TriangleIntersection.h>
 
 #include <algorithm>
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 
@@ -231,25 +237,30 @@ inline bool occluded(const WideBvh &wide, const RayContext &c, float tHigh,
     }
 }
 
-/// Closest hit (AnyHit = false: offers candidates to `best`, a NearestHit or a LayerPriorityHit,
-/// and returns whether it changed) or any hit (returns true on the first accepted hit; after the
-/// root box, handed to occluded()) over the wide BVH.
-template <bool AnyHit, class Best>
-bool traverse(const WideBvh &wide, const RayContext &c, Best &best) {
+/// Any hit over the wide BVH: true on the first accepted hit (after the root box, occluded()).
+inline bool anyHitWalk(const WideBvh &wide, const RayContext &c, NearestHit &unused) {
     if (wide.blockCount == 0) return false;
+    const float tHigh = c.tMax * kTraversalSlackUp;
+    float tEntry;
+    if (!(wide.rootMask & c.layerMask) || !intersectBox(wide.rootBounds, c, tHigh, tEntry)) return false;
+    return occluded(wide, c, tHigh, unused);
+}
+
+/// Closest hit over the planes [planes, planes + planeCount) and the wide BVH: offers candidates
+/// to `best` (a NearestHit or a LayerPriorityHit) and returns whether it changed. Inlined into
+/// the query entries below, which set up the query in the walk's instruction set.
+template <class Best>
+MVCL_KERNEL_INLINE bool closestWalk(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount,
+                                    const RayContext &c, Best &best) {
+    // The planes first: a plane in front (the floor under a scene) caps the walk from its start,
+    // and the cap only culls boxes beyond a hit that is already there (the result is a function
+    // of the candidate set, not of their order).
+    bool found = testPlanes<false>(planes, planeCount, c, best);
+    if (wide.blockCount == 0 || !(wide.rootMask & c.layerMask)) return found;
     const WideNode *nodes = wide.nodes.get();
     const PrimBlock *blocks = wide.blocks.get();
     const PrimInfo *info = wide.info.get();
-    float tHigh = c.tMax * kTraversalSlackUp;
-    float tEntry;
-    if (!(wide.rootMask & c.layerMask) || !intersectBox(wide.rootBounds, c, tHigh, tEntry))
-        return false;
-    if constexpr (AnyHit) {
-        return occluded(wide, c, tHigh, best);
-    } else {
-    // Only now: many rays miss the scene bounds, and the shear costs three divisions.
-    const WatertightRay wray(c.ray);
-    const WatertightRay4 wray4(wray);
+    float tHigh = std::min(c.tMax, best.cap()) * kTraversalSlackUp;
     const NodeRay nodeRay(c);
 
     struct Entry {
@@ -260,7 +271,6 @@ bool traverse(const WideBvh &wide, const RayContext &c, Best &best) {
     Entry stack[2 * kStackSize + kWidth];
     int sp = 0;
     uint32_t cur = wide.root;
-    bool found = false;
     // Sorted insertion of the entered lanes of a node into the run that starts at `base`.
     auto insert = [&](int base, int bits, const uint32_t *child, const float *tNear) {
         while (bits) {
@@ -275,10 +285,48 @@ bool traverse(const WideBvh &wide, const RayContext &c, Best &best) {
             stack[j] = e;
         }
     };
+    // The entered children (bits ≠ 0) of one node: the nearest becomes cur, the others wait on the
+    // stack. One child (the common case deep in the tree) needs no stack at all. Otherwise the
+    // children go straight onto the stack, kept in descending t by insertion (stable, so equal t
+    // keep lane order), and the nearest is popped back: no scratch list to copy.
+    auto descend = [&](int bits, const uint32_t *child, const float *tNear) {
+        if (!(bits & (bits - 1))) {
+            cur = child[std::countr_zero(unsigned(bits))];
+            return;
+        }
+        const int rest = bits & (bits - 1);
+        if (!(rest & (rest - 1))) {
+            // Two children (the next most common case): the nearer goes on from a register, not
+            // through a stack store and reload. Same order as insert(): on equal t the higher
+            // lane comes first.
+            const int l0 = std::countr_zero(unsigned(bits));
+            const int l1 = std::countr_zero(unsigned(rest));
+            const bool first0 = tNear[l0] < tNear[l1];
+            stack[sp++] = first0 ? Entry{child[l1], tNear[l1]} : Entry{child[l0], tNear[l0]};
+            cur = child[first0 ? l0 : l1];
+            return;
+        }
+        insert(sp, bits, child, tNear);
+        cur = stack[--sp].ref;
+    };
+    if (WideLeaf::isLeaf(cur)) {
+        float tEntry;
+        if (!intersectBox(wide.rootBounds, c, tHigh, tEntry)) return found;
+    } else {
+        // No test of the root's own box: it is the union of its children's, which the node test
+        // below tests at once, as wide as one scalar box (a tree of one node, such as
+        // cube-in-cube, then pays one box test per query, not two).
+        alignas(32) float tNear[kWidth];
+        const int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
+        if (!bits) return found;
+        descend(bits, nodes[cur].child, tNear);
+    }
+    // Only now: many rays miss every box, and the shear costs three divisions.
+    const WatertightRay wray(c.ray);
+    const WatertightRay4 wray4(wray);
     for (;;) {
         if (WideLeaf::isLeaf(cur)) {
-            if (testLeaf<AnyHit>(cur, blocks, info, c, wray4, best)) {
-                if (AnyHit) return true;
+            if (testLeaf<false>(cur, blocks, info, c, wray4, best)) {
                 found = true;
                 tHigh = std::min(c.tMax, best.cap()) * kTraversalSlackUp;
             }
@@ -300,31 +348,9 @@ bool traverse(const WideBvh &wide, const RayContext &c, Best &best) {
             }
         } else {
             alignas(32) float tNear[kWidth];
-            int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
+            const int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
             if (bits) {
-                const uint32_t *child = nodes[cur].child;
-                // One child (the common case deep in the tree) needs no stack at all. Otherwise
-                // the children go straight onto the stack, kept in descending t by insertion
-                // (stable, so equal t keep lane order), and the nearest is popped back: no
-                // scratch list to copy.
-                if (!(bits & (bits - 1))) {
-                    cur = child[std::countr_zero(unsigned(bits))];
-                    continue;
-                }
-                const int rest = bits & (bits - 1);
-                if (!(rest & (rest - 1))) {
-                    // Two children (the next most common case): the nearer goes on from a
-                    // register, not through a stack store and reload. Same order as insert():
-                    // on equal t the higher lane comes first.
-                    const int l0 = std::countr_zero(unsigned(bits));
-                    const int l1 = std::countr_zero(unsigned(rest));
-                    const bool first0 = tNear[l0] < tNear[l1];
-                    stack[sp++] = first0 ? Entry{child[l1], tNear[l1]} : Entry{child[l0], tNear[l0]};
-                    cur = child[first0 ? l0 : l1];
-                    continue;
-                }
-                insert(sp, bits, child, tNear);
-                cur = stack[--sp].ref;
+                descend(bits, nodes[cur].child, tNear);
                 continue;
             }
         }
@@ -338,7 +364,22 @@ bool traverse(const WideBvh &wide, const RayContext &c, Best &best) {
             }
         }
     }
-    }
+}
+
+/// SingleRayKernels::queryNearest: a whole closest-hit query of one layer.
+inline bool queryNearest(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const Ray &ray,
+                         const RayQuery &query, float tMin, float tMax, Hit &hit) {
+    const RayContext c(ray, query, tMin, tMax);
+    NearestHit best;
+    return closestWalk(wide, planes, planeCount, c, best) && best.resolve(hit);
+}
+
+/// SingleRayKernels::queryLayered: a whole closest-hit query with layer priority.
+inline bool queryLayered(const WideBvh &wide, const PlaneRecord *planes, std::size_t planeCount, const Ray &ray,
+                         const RayQuery &query, float tMin, float tMax, float contactWindow, Hit &hit) {
+    const RayContext c(ray, query, tMin, tMax);
+    LayerPriorityHit best(contactWindow);
+    return closestWalk(wide, planes, planeCount, c, best) && best.resolve(hit);
 }
 
 } // namespace MVCL_ISA_NAMESPACE

@@ -70,6 +70,10 @@ public:
     /// Closest hit within the query. Returns false (and leaves `hit` untouched) on a miss.
     /// Invalid rays (NaN/Inf components, zero direction, tMin > tMax) miss.
     bool closestHit(const Ray &ray, const RayQuery &query, Hit &hit) const;
+    /// closestHit() with the range [max(query.tMin, tMin), min(query.tMax, tMax)]: the steps of a
+    /// walk along one ray (a transparent shadow ray, each step starting past the previous hit),
+    /// without a copy of the query.
+    bool closestHit(const Ray &ray, const RayQuery &query, float tMin, float tMax, Hit &hit) const;
     /// True if anything within the query is hit (shadow rays).
     bool anyHit(const Ray &ray, const RayQuery &query) const;
     /// anyHit() with the range ending at min(query.tMax, tMax): a shadow ray toward a point light
