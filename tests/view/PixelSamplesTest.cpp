@@ -126,6 +126,17 @@ double coveredArea(double nx, double ny, double c) {
     return std::abs(twice) / 2.0;
 }
 
+TEST(PixelSamplesTest, ScaleBeyondTheTableRepeatsItsLastOctave) {
+    // Counts past the table take the entry at the same place of its last octave [2048, 4096).
+    for (const auto *table : {&kBlockEstimateScale, &kEarlierEstimateScale, &kLaterEstimateScale}) {
+        EXPECT_EQ(estimateScale(*table, 4096), (*table)[4096]);
+        EXPECT_EQ(estimateScale(*table, 4097), (*table)[2048]);
+        EXPECT_EQ(estimateScale(*table, 4096 + 3000), (*table)[2048 + 1500]);
+        EXPECT_EQ(estimateScale(*table, 8192 + 8191), (*table)[2048 + 2047]);
+        EXPECT_EQ(estimateScale(*table, 1u << 31), (*table)[2048]);
+    }
+}
+
 TEST(PixelSamplesTest, ScaledEstimateMatchesTheErrorOfPixelsCrossedByAnEdge) {
     // The per-count scale was computed offline from a model of an edge pixel; here the same
     // model runs through the renderer's own sequence (PixelSequence) and sums (PixelSamples),
