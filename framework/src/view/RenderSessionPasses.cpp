@@ -396,7 +396,9 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
                         if (!((taking >> count) & 1u)) continue;
                         const size_t i = size_t(y) * size_t(w) + size_t(x);
                         const detail::PixelSamples &sums = samples[i];
-                        errors[i] = sums.relativeError();
+                        // relativeError() is +∞ below two samples: asked here, not through a
+                        // call per pixel of a one-sample pass.
+                        errors[i] = sums.count < 2 ? INFINITY : sums.relativeError();
                         // One sample's mean is its sum (x / 1 is exact): the division was a
                         // third of this loop's time in a one-sample pass.
                         display.at(x, y) = sums.count == 1 ? sums.sum : sums.mean();
