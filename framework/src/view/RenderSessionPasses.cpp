@@ -340,10 +340,12 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
                            : settings.sampling == SamplingMode::Fixed ? wanted
                            : std::min(wanted, fewest == 0 ? 1u : fewest + std::min(fewest, kMaxSamplesPerPass));
     const float threshold = urgentPass ? INFINITY : topPriority() / kPriorityBand;
-    auto samplesToTake = [&](size_t i) -> uint32_t { // the pixel's sample count after this pass
-        const uint32_t count = samples[i].count;
-        if (urgentPass) return priority[i] == INFINITY && count < level ? level : count;
-        return priority[i] >= threshold ? std::min(wanted, count + std::min(count, kMaxSamplesPerPass)) : count;
+    // By value: captured by reference, every pixel reloaded them (stores to the pixels' sums
+    // might alias them, as far as the compiler knows).
+    auto samplesToTake = [urgentPass, level, threshold, wanted](float urgency, uint32_t count) -> uint32_t {
+        // the pixel's sample count after this pass
+        if (urgentPass) return urgency == INFINITY && count < level ? level : count;
+        return urgency >= threshold ? std::min(wanted, count + std::min(count, kMaxSamplesPerPass)) : count;
     };
     std::vector<int> work;
     for (int t = 0; t < int(tileFewestUrgent.size()); ++t)
@@ -364,6 +366,13 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
         detail::PixelTracer tracer(integrator, camera, map, settings.seed, stageSelectionOf(settings));
         const PixelRect r = tileRect(work[k]);
         uint64_t traced = 0;
+        // The per-pixel arrays as local pointers, held in registers: reached through the
+        // captured `this`, every pixel reloaded them after each store.
+        detail::PixelSamples *const sumsOf = samples.data();
+        const float *const urgencyOf = priority.data();
+        float *const estimateOf = errors.data();
+        glm::vec3 *const shownOf = display.pixels().data(); // display.at(x, y) is shownOf[y · w + x]
+        const size_t stride = size_t(w);
         // In blocks of 4 × 4 pixels, whose primary rays share packets (PixelTracer::addBlockSamples).
         constexpr int kSide = detail::PixelTracer::kBlockSide;
         for (int by = r.y0; by < r.y1 && !stopped.load(std::memory_order_relaxed); by += kSide) {
@@ -378,9 +387,11 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
                 int count = 0;
                 for (int y = by; y < by1; ++y)
                     for (int x = bx; x < bx1; ++x, ++count) {
-                        const size_t i = size_t(y) * size_t(w) + size_t(x);
-                        end[size_t(count)] = samplesToTake(i);
-                        taking |= uint32_t(end[size_t(count)] > samples[i].count) << count;
+                        const size_t i = size_t(y) * stride + size_t(x);
+                        const uint32_t has = sumsOf[i].count;
+                        const uint32_t after = samplesToTake(urgencyOf[i], has);
+                        end[size_t(count)] = after;
+                        taking |= uint32_t(after > has) << count;
                     }
                 if (!taking) continue;
                 // An edit cancels between blocks: each pixel gets all of its new samples or none.
@@ -388,20 +399,19 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
                     stopped = true;
                     break;
                 }
-                tracer.addBlockSamples(bx, by, bx1, by1, end.data(), &samples[size_t(by) * size_t(w) + size_t(bx)],
-                                       size_t(w));
+                tracer.addBlockSamples(bx, by, bx1, by1, end.data(), sumsOf + size_t(by) * stride + size_t(bx), stride);
                 count = 0;
                 for (int y = by; y < by1; ++y)
                     for (int x = bx; x < bx1; ++x, ++count) {
                         if (!((taking >> count) & 1u)) continue;
-                        const size_t i = size_t(y) * size_t(w) + size_t(x);
-                        const detail::PixelSamples &sums = samples[i];
+                        const size_t i = size_t(y) * stride + size_t(x);
+                        const detail::PixelSamples &sums = sumsOf[i];
                         // relativeError() is +∞ below two samples: asked here, not through a
                         // call per pixel of a one-sample pass.
-                        errors[i] = sums.count < 2 ? INFINITY : sums.relativeError();
+                        estimateOf[i] = sums.count < 2 ? INFINITY : sums.relativeError();
                         // One sample's mean is its sum (x / 1 is exact): the division was a
                         // third of this loop's time in a one-sample pass.
-                        display.at(x, y) = sums.count == 1 ? sums.sum : sums.mean();
+                        shownOf[i] = sums.count == 1 ? sums.sum : sums.mean();
                         ++traced;
                     }
             }
