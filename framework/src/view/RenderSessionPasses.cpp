@@ -188,42 +188,64 @@ void RenderSession::Private::updateActiveTiles(const std::vector<int> &tiles) {
 void RenderSession::Private::summariseTile(int tile) {
     const int w = width();
     const PixelRect r = tileRect(tile);
-    // priorityOf() with its cheap answers inline: every pixel of every traced tile comes here.
+    // Every pixel of every traced tile comes here.
     const uint32_t wanted = samplesWanted();
     const bool byError = settings.sampling == SamplingMode::Adaptive && settings.targetError > 0.f;
     const uint32_t minimum = uint32_t(settings.minSamplesPerPixel);
     const auto imageEstimate = byError ? detail::PixelSamples::ImageEstimate::AfterAdaptiveDecisions
                                        : detail::PixelSamples::ImageEstimate::EveryPixelAlike;
-    const auto priorityAt = [&](int x, int y, const detail::PixelSamples &s) {
-        return s.count >= wanted ? 0.f : !byError || s.count < minimum ? INFINITY : errorPriority(x, y, s.rays);
-    };
-    TileSummary summary;
-    summary.minCount = kNoActivePixel;
-    summary.interiorFewestUrgent = kNoActivePixel;
+    // The sums in locals and the arrays through local pointers, kept in registers: as members
+    // of `summary` and of `this` they were stored and reloaded at every pixel.
+    uint32_t minCount = kNoActivePixel, maxCount = 0, withError = 0, withoutEstimate = 0;
+    uint32_t interiorActive = 0, interiorFewestUrgent = kNoActivePixel;
+    uint64_t countSum = 0;
+    double errorSum = 0.0, relativeMseSum = 0.0;
+    float worstError = 0.f, maxError = 0.f, interiorTopPriority = 0.f;
+    const detail::PixelSamples *const sumsOf = samples.data();
+    const float *const errorOf = errors.data();
+    float *const priorityAt = priority.data();
     for (int y = r.y0; y < r.y1; ++y) {
         const bool borderRow = y == r.y0 || y == r.y1 - 1;
         for (int x = r.x0; x < r.x1; ++x) {
             const size_t i = size_t(y) * size_t(w) + size_t(x);
-            const uint32_t count = samples[i].count;
-            summary.minCount = std::min(summary.minCount, count);
-            summary.maxCount = std::max(summary.maxCount, count);
-            summary.countSum += count;
-            summary.worstError = std::max(summary.worstError, errors[i]);
+            const detail::PixelSamples &s = sumsOf[i];
+            const uint32_t count = s.count;
+            const float error = errorOf[i];
+            minCount = std::min(minCount, count);
+            maxCount = std::max(maxCount, count);
+            countSum += count;
+            worstError = std::max(worstError, error);
             if (count >= 2) {
-                summary.errorSum += errors[i];
-                summary.maxError = std::max(summary.maxError, errors[i]);
-                ++summary.withError;
-                summary.relativeMseSum += samples[i].relativeMse(imageEstimate);
+                errorSum += error;
+                maxError = std::max(maxError, error);
+                ++withError;
+                relativeMseSum += s.relativeMse(imageEstimate);
             } else {
-                ++summary.withoutEstimate;
+                ++withoutEstimate;
             }
             if (borderRow || x == r.x0 || x == r.x1 - 1) continue;
-            const float p = priority[i] = priorityAt(x, y, samples[i]);
-            if (p > 0.f) ++summary.interiorActive;
-            if (p == INFINITY) summary.interiorFewestUrgent = std::min(summary.interiorFewestUrgent, count);
-            else summary.interiorTopPriority = std::max(summary.interiorTopPriority, p);
+            // priorityOf() with its cheap answers inline.
+            const float p = priorityAt[i] = count >= wanted                    ? 0.f
+                                            : !byError || count < minimum ? INFINITY
+                                                                          : errorPriority(x, y, s.rays);
+            if (p > 0.f) ++interiorActive;
+            if (p == INFINITY) interiorFewestUrgent = std::min(interiorFewestUrgent, count);
+            else interiorTopPriority = std::max(interiorTopPriority, p);
         }
     }
+    TileSummary summary;
+    summary.minCount = minCount;
+    summary.maxCount = maxCount;
+    summary.countSum = countSum;
+    summary.errorSum = errorSum;
+    summary.maxError = maxError;
+    summary.worstError = worstError;
+    summary.withError = withError;
+    summary.relativeMseSum = relativeMseSum;
+    summary.withoutEstimate = withoutEstimate;
+    summary.interiorActive = interiorActive;
+    summary.interiorFewestUrgent = interiorFewestUrgent;
+    summary.interiorTopPriority = interiorTopPriority;
     tileSummaries[size_t(tile)] = summary;
 }
 
