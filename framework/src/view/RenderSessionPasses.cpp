@@ -188,42 +188,64 @@ void RenderSession::Private::updateActiveTiles(const std::vector<int> &tiles) {
 void RenderSession::Private::summariseTile(int tile) {
     const int w = width();
     const PixelRect r = tileRect(tile);
-    // priorityOf() with its cheap answers inline: every pixel of every traced tile comes here.
+    // Every pixel of every traced tile comes here.
     const uint32_t wanted = samplesWanted();
     const bool byError = settings.sampling == SamplingMode::Adaptive && settings.targetError > 0.f;
     const uint32_t minimum = uint32_t(settings.minSamplesPerPixel);
     const auto imageEstimate = byError ? detail::PixelSamples::ImageEstimate::AfterAdaptiveDecisions
                                        : detail::PixelSamples::ImageEstimate::EveryPixelAlike;
-    const auto priorityAt = [&](int x, int y, const detail::PixelSamples &s) {
-        return s.count >= wanted ? 0.f : !byError || s.count < minimum ? INFINITY : errorPriority(x, y, s.rays);
-    };
-    TileSummary summary;
-    summary.minCount = kNoActivePixel;
-    summary.interiorFewestUrgent = kNoActivePixel;
+    // The sums in locals and the arrays through local pointers, kept in registers: as members
+    // of `summary` and of `this` they were stored and reloaded at every pixel.
+    uint32_t minCount = kNoActivePixel, maxCount = 0, withError = 0, withoutEstimate = 0;
+    uint32_t interiorActive = 0, interiorFewestUrgent = kNoActivePixel;
+    uint64_t countSum = 0;
+    double errorSum = 0.0, relativeMseSum = 0.0;
+    float worstError = 0.f, maxError = 0.f, interiorTopPriority = 0.f;
+    const detail::PixelSamples *const sumsOf = samples.data();
+    const float *const errorOf = errors.data();
+    float *const priorityAt = priority.data();
     for (int y = r.y0; y < r.y1; ++y) {
         const bool borderRow = y == r.y0 || y == r.y1 - 1;
         for (int x = r.x0; x < r.x1; ++x) {
             const size_t i = size_t(y) * size_t(w) + size_t(x);
-            const uint32_t count = samples[i].count;
-            summary.minCount = std::min(summary.minCount, count);
-            summary.maxCount = std::max(summary.maxCount, count);
-            summary.countSum += count;
-            summary.worstError = std::max(summary.worstError, errors[i]);
+            const detail::PixelSamples &s = sumsOf[i];
+            const uint32_t count = s.count;
+            const float error = errorOf[i];
+            minCount = std::min(minCount, count);
+            maxCount = std::max(maxCount, count);
+            countSum += count;
+            worstError = std::max(worstError, error);
             if (count >= 2) {
-                summary.errorSum += errors[i];
-                summary.maxError = std::max(summary.maxError, errors[i]);
-                ++summary.withError;
-                summary.relativeMseSum += samples[i].relativeMse(imageEstimate);
+                errorSum += error;
+                maxError = std::max(maxError, error);
+                ++withError;
+                relativeMseSum += s.relativeMse(imageEstimate);
             } else {
-                ++summary.withoutEstimate;
+                ++withoutEstimate;
             }
             if (borderRow || x == r.x0 || x == r.x1 - 1) continue;
-            const float p = priority[i] = priorityAt(x, y, samples[i]);
-            if (p > 0.f) ++summary.interiorActive;
-            if (p == INFINITY) summary.interiorFewestUrgent = std::min(summary.interiorFewestUrgent, count);
-            else summary.interiorTopPriority = std::max(summary.interiorTopPriority, p);
+            // priorityOf() with its cheap answers inline.
+            const float p = priorityAt[i] = count >= wanted                    ? 0.f
+                                            : !byError || count < minimum ? INFINITY
+                                                                          : errorPriority(x, y, s.rays);
+            if (p > 0.f) ++interiorActive;
+            if (p == INFINITY) interiorFewestUrgent = std::min(interiorFewestUrgent, count);
+            else interiorTopPriority = std::max(interiorTopPriority, p);
         }
     }
+    TileSummary summary;
+    summary.minCount = minCount;
+    summary.maxCount = maxCount;
+    summary.countSum = countSum;
+    summary.errorSum = errorSum;
+    summary.maxError = maxError;
+    summary.worstError = worstError;
+    summary.withError = withError;
+    summary.relativeMseSum = relativeMseSum;
+    summary.withoutEstimate = withoutEstimate;
+    summary.interiorActive = interiorActive;
+    summary.interiorFewestUrgent = interiorFewestUrgent;
+    summary.interiorTopPriority = interiorTopPriority;
     tileSummaries[size_t(tile)] = summary;
 }
 
@@ -252,6 +274,31 @@ void RenderSession::Private::finishTile(int tile) {
     summary.activeCount = activeCount;
     tileFewestUrgent[size_t(tile)] = fewest;
     tileTopPriority[size_t(tile)] = top;
+}
+
+void RenderSession::Private::summariseFreshTiles() {
+    // resize() left every pixel without samples and with an infinite estimate, so every pixel
+    // (and every neighbourhood) is alike: the summaries summariseTile() and finishTile() would
+    // make are known from one pixel. Their walk over every pixel was 4 % of a one-sample frame.
+    const float p = priorityOf(0, 0);
+    if (p != INFINITY) std::fill(priority.begin(), priority.end(), p); // resize() wrote +∞
+    for (int tile = 0; tile < int(tileSummaries.size()); ++tile) {
+        const PixelRect r = tileRect(tile);
+        const uint32_t w = uint32_t(r.x1 - r.x0), h = uint32_t(r.y1 - r.y0);
+        const uint32_t pixels = w * h, interior = (w > 2 ? w - 2 : 0) * (h > 2 ? h - 2 : 0);
+        TileSummary summary;
+        summary.minCount = 0;
+        summary.worstError = INFINITY;
+        summary.withoutEstimate = pixels;
+        summary.interiorFewestUrgent = p == INFINITY && interior > 0 ? 0 : kNoActivePixel;
+        summary.interiorActive = p > 0.f ? interior : 0;
+        summary.interiorTopPriority = p != INFINITY && interior > 0 ? std::max(0.f, p) : 0.f;
+        summary.activeCount = p > 0.f ? pixels : 0;
+        tileSummaries[size_t(tile)] = summary;
+        tileFewestUrgent[size_t(tile)] = p == INFINITY ? 0 : kNoActivePixel;
+        tileTopPriority[size_t(tile)] = p != INFINITY ? std::max(0.f, p) : 0.f;
+    }
+    stopWhenConverged();
 }
 
 void RenderSession::Private::stopWhenConverged() {
@@ -315,10 +362,12 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
                            : settings.sampling == SamplingMode::Fixed ? wanted
                            : std::min(wanted, fewest == 0 ? 1u : fewest + std::min(fewest, kMaxSamplesPerPass));
     const float threshold = urgentPass ? INFINITY : topPriority() / kPriorityBand;
-    auto samplesToTake = [&](size_t i) -> uint32_t { // the pixel's sample count after this pass
-        const uint32_t count = samples[i].count;
-        if (urgentPass) return priority[i] == INFINITY && count < level ? level : count;
-        return priority[i] >= threshold ? std::min(wanted, count + std::min(count, kMaxSamplesPerPass)) : count;
+    // By value: captured by reference, every pixel reloaded them (stores to the pixels' sums
+    // might alias them, as far as the compiler knows).
+    auto samplesToTake = [urgentPass, level, threshold, wanted](float urgency, uint32_t count) -> uint32_t {
+        // the pixel's sample count after this pass
+        if (urgentPass) return urgency == INFINITY && count < level ? level : count;
+        return urgency >= threshold ? std::min(wanted, count + std::min(count, kMaxSamplesPerPass)) : count;
     };
     std::vector<int> work;
     for (int t = 0; t < int(tileFewestUrgent.size()); ++t)
@@ -339,6 +388,13 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
         detail::PixelTracer tracer(integrator, camera, map, settings.seed, stageSelectionOf(settings));
         const PixelRect r = tileRect(work[k]);
         uint64_t traced = 0;
+        // The per-pixel arrays as local pointers, held in registers: reached through the
+        // captured `this`, every pixel reloaded them after each store.
+        detail::PixelSamples *const sumsOf = samples.data();
+        const float *const urgencyOf = priority.data();
+        float *const estimateOf = errors.data();
+        glm::vec3 *const shownOf = display.pixels().data(); // display.at(x, y) is shownOf[y · w + x]
+        const size_t stride = size_t(w);
         // In blocks of 4 × 4 pixels, whose primary rays share packets (PixelTracer::addBlockSamples).
         constexpr int kSide = detail::PixelTracer::kBlockSide;
         for (int by = r.y0; by < r.y1 && !stopped.load(std::memory_order_relaxed); by += kSide) {
@@ -353,9 +409,11 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
                 int count = 0;
                 for (int y = by; y < by1; ++y)
                     for (int x = bx; x < bx1; ++x, ++count) {
-                        const size_t i = size_t(y) * size_t(w) + size_t(x);
-                        end[size_t(count)] = samplesToTake(i);
-                        taking |= uint32_t(end[size_t(count)] > samples[i].count) << count;
+                        const size_t i = size_t(y) * stride + size_t(x);
+                        const uint32_t has = sumsOf[i].count;
+                        const uint32_t after = samplesToTake(urgencyOf[i], has);
+                        end[size_t(count)] = after;
+                        taking |= uint32_t(after > has) << count;
                     }
                 if (!taking) continue;
                 // An edit cancels between blocks: each pixel gets all of its new samples or none.
@@ -363,18 +421,19 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
                     stopped = true;
                     break;
                 }
-                tracer.addBlockSamples(bx, by, bx1, by1, end.data(), &samples[size_t(by) * size_t(w) + size_t(bx)],
-                                       size_t(w));
+                tracer.addBlockSamples(bx, by, bx1, by1, end.data(), sumsOf + size_t(by) * stride + size_t(bx), stride);
                 count = 0;
                 for (int y = by; y < by1; ++y)
                     for (int x = bx; x < bx1; ++x, ++count) {
                         if (!((taking >> count) & 1u)) continue;
-                        const size_t i = size_t(y) * size_t(w) + size_t(x);
-                        const detail::PixelSamples &sums = samples[i];
-                        errors[i] = sums.relativeError();
+                        const size_t i = size_t(y) * stride + size_t(x);
+                        const detail::PixelSamples &sums = sumsOf[i];
+                        // relativeError() is +∞ below two samples: asked here, not through a
+                        // call per pixel of a one-sample pass.
+                        estimateOf[i] = sums.count < 2 ? INFINITY : sums.relativeError();
                         // One sample's mean is its sum (x / 1 is exact): the division was a
                         // third of this loop's time in a one-sample pass.
-                        display.at(x, y) = sums.count == 1 ? sums.sum : sums.mean();
+                        shownOf[i] = sums.count == 1 ? sums.sum : sums.mean();
                         ++traced;
                     }
             }
@@ -554,7 +613,7 @@ RenderPassStats RenderSession::Private::renderPass() {
         // resize() has just reset every pixel's samples and estimate: only the tiles' summaries
         // are left to make.
         if (restartAll)
-            updateActive({0, 0, width(), height()});
+            summariseFreshTiles();
         else
             restartPixels({0, 0, width(), height()}, nullptr);
         stats.pixelsRestarted = pixelCount();

@@ -196,6 +196,9 @@ struct RenderSession::Private {
     void updateActiveTiles(const std::vector<int> &tiles);
     void summariseTile(int tile);
     void finishTile(int tile);
+    /// updateActive() of the whole image right after resize(): every pixel alike, so every
+    /// tile's summary follows from one pixel's priority, without reading the pixels.
+    void summariseFreshTiles();
     void stopWhenConverged();
     uint32_t fewestUrgent() const;
     float topPriority() const;
