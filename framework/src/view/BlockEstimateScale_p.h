@@ -14,7 +14,7 @@ inline constexpr uint32_t kBlockEstimateScaleCounts = 4096;
 /// are runs of one R2 sequence, not independent samples: how much of their error cancels in
 /// the mean depends on n (at 64 samples v overstates the error 2.7×, just past a power of two,
 /// where the second block has a few samples, up to 70×). Computed by
-/// scripts/block-estimate-scale.py (BlockEstimateScaleTable.cpp, generated); edges are what
+/// scripts/block-estimate-scale.py (*EstimateScaleTable.cpp, generated); edges are what
 /// carries an image's error, and images measured against converged references over-estimate
 /// by the same factors (docs/benchmarks.md).
 extern const std::array<float, kBlockEstimateScaleCounts + 1> kBlockEstimateScale;

@@ -105,10 +105,10 @@ float PixelSamples::relativeError() const {
 float PixelSamples::relativeMse(ImageEstimate source) const {
     if (count < 2) return 0.f;
     const glm::vec3 all = sum / float(count);
-    glm::vec3 variance = blockVariance();
-    if (count >= 4)
-        variance = source == ImageEstimate::EveryPixelAlike ? (variance + laterBlockVariance()) * 0.5f
-                                                            : laterBlockVariance();
+    glm::vec3 variance;
+    if (count < 4) variance = blockVariance();
+    else if (source == ImageEstimate::EveryPixelAlike) variance = (blockVariance() + laterBlockVariance()) * 0.5f;
+    else variance = laterBlockVariance();
     const glm::vec3 relative = variance / (all * all + 0.01f);
     return (relative.x + relative.y + relative.z) / 3.f;
 }
