@@ -39,7 +39,9 @@ public:
 
     MVCL_KERNEL_INLINE float cap() const { return m_windowEnd; }
     MVCL_KERNEL_INLINE bool mayMatter(const Hit &cand) const { return cand.t <= m_windowEnd; }
-    MVCL_KERNEL_INLINE bool offer(const RayContext &c, const Hit &cand, float tError) {
+    /// As NearestHit::offer().
+    template <class Context>
+    MVCL_KERNEL_INLINE bool offer(const Context &c, const Hit &cand, float tError) {
         if (!(cand.t <= m_windowEnd)) return false;
         const float end = cand.t + std::max(2.f * tError, m_contactWindow);
         const uint32_t bit = 1u << cand.layer;

@@ -20,8 +20,10 @@ public:
     /// False when a hit at t (and every farther hit of the same primitive) cannot change the result.
     MVCL_KERNEL_INLINE bool mayMatter(const Hit &cand) const { return hitPrecedes(cand, m_best); }
     /// Offers an accepted-range candidate with the error bound of its t (unused here). Returns
-    /// true if the result changed.
-    MVCL_KERNEL_INLINE bool offer(const RayContext &c, const Hit &cand, float /*tError*/) {
+    /// true if the result changed. `c` is the ray's RayContext, or a PacketLane (PacketSetup.h):
+    /// anything with the clip test acceptsPoint(t, layer).
+    template <class Context>
+    MVCL_KERNEL_INLINE bool offer(const Context &c, const Hit &cand, float /*tError*/) {
         if (!hitPrecedes(cand, m_best)) return false;
         if (!c.acceptsPoint(cand.t, cand.layer)) return false;
         m_best = cand;

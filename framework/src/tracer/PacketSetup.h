@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <new>
 #include <span>
 #include <type_traits>
@@ -34,15 +35,30 @@ union Slot {
     T value;
 };
 
+struct PacketSetup;
+
+/// What a triangle hit of ray i needs from its query, read from the packet instead of a
+/// RayContext (whose reciprocals and slab order the packet walk has in lanes already): the
+/// range test and the clip test, the expressions of RayContext::acceptsT() and acceptsPoint().
+struct PacketLane {
+    const PacketSetup &s;
+    int i;
+    MVCL_KERNEL_INLINE bool acceptsT(float t) const;
+    MVCL_KERNEL_INLINE bool acceptsPoint(float t, uint32_t layer) const;
+};
+
 /// A packet query's rays: their origins and directions in lanes, and each ray's context and
-/// triangle-kernel constants, made when the ray first reaches a leaf (most rays of a tile that
-/// misses the model never do).
+/// single-ray triangle-kernel constants, made only where the ray needs them: a leaf holding
+/// spheres, a zero edge function (the scalar fallback), the planes (triangle hits go through
+/// PacketLane).
 struct PacketSetup {
     const Ray *rays = nullptr;
     const RayQuery *query = nullptr;
     /// Each ray's upper bound: the query's, or min(query.tMax, tMax[i]) for anyHits() with
     /// per-ray ranges (the expression a single query with that tMax would hold).
     float tMax[kPacketLanes];
+    float tMin = 0.f;   ///< the query's
+    bool hasClips = false; ///< the query has clip volumes
     unsigned valid = 0; ///< rays with a valid query
     unsigned built = 0; ///< rays whose context exists
     unsigned dominantAxisLanes[3] = {}; ///< rays by WatertightRay::kz (the largest |direction| axis)
@@ -57,7 +73,7 @@ struct PacketSetup {
     /// `rayTMax`: null, or each ray's own upper bound (see tMax). Made by Tracer (baseline code)
     /// only; the walks call context().
     PacketSetup(std::span<const Ray> r, const RayQuery &q, const float *rayTMax = nullptr)
-        : rays(r.data()), query(&q) {
+        : rays(r.data()), query(&q), tMin(q.tMin), hasClips(q.clipCount() > 0) {
         for (int i = 0; i < kPacketLanes; ++i) {
             const bool inPacket = std::size_t(i) < r.size();
             tMax[i] = inPacket && rayTMax ? std::min(q.tMax, rayTMax[i]) : q.tMax;
@@ -86,6 +102,13 @@ struct PacketSetup {
         return contexts[i].value;
     }
 };
+
+MVCL_KERNEL_INLINE bool PacketLane::acceptsT(float t) const {
+    return t > 0.f && t >= s.tMin && t <= s.tMax[i] && t < kInfinity;
+}
+MVCL_KERNEL_INLINE bool PacketLane::acceptsPoint(float t, uint32_t layer) const {
+    return !s.hasClips || clipsAcceptAt(*s.query, s.rays[i], t, layer);
+}
 
 /// The closest-hit states of a packet's rays, made in place (LayerPriorityHit takes an argument)
 /// by the caller of the walk.

@@ -298,7 +298,7 @@ unsigned leafAcrossRays(uint32_t leaf, unsigned active, const PrimBlock *blocks,
                                                                          b1, b2, tError, onEdge);
                 // A hit of ray i at (t, u, v): the query's range and clips, then the closest-hit state.
                 auto take = [&](int i, float ti, float u, float v, float tErr) {
-                    const RayContext &c = s.context(i);
+                    const PacketLane c{s, i};
                     if (!c.acceptsT(ti)) return;
                     if (AnyHit) {
                         if (!c.acceptsPoint(ti, info[4 * bi + unsigned(lane)].layer)) return;
@@ -309,7 +309,7 @@ unsigned leafAcrossRays(uint32_t leaf, unsigned active, const PrimBlock *blocks,
                     }
                     if (!best[i].offer(c, triangleCandidate(info[4 * bi + unsigned(lane)], ti, u, v), tErr)) return;
                     changed |= 1u << i;
-                    p.tCap[i] = std::min(c.tMax, best[i].cap());
+                    p.tCap[i] = std::min(s.tMax[i], best[i].cap());
                     p.tHigh[i] = p.tCap[i] * kTraversalSlackUp;
                 };
                 for (; hits; hits &= hits - 1) {

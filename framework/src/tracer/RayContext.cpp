@@ -8,6 +8,10 @@
 
 namespace mvcl::detail {
 
-bool RayContext::clipsAccept(float t, uint32_t layer) const { return query->acceptsPoint(ray.at(t), layer); }
+bool RayContext::clipsAccept(float t, uint32_t layer) const { return clipsAcceptAt(*query, ray, t, layer); }
+
+bool clipsAcceptAt(const RayQuery &query, const Ray &ray, float t, uint32_t layer) {
+    return query.acceptsPoint(ray.at(t), layer);
+}
 
 } // namespace mvcl::detail

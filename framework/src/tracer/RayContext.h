@@ -127,4 +127,8 @@ struct RayContext {
     bool clipsAccept(float t, uint32_t layer) const;
 };
 
+/// RayContext::clipsAccept() for a ray without a RayContext (a lane of a packet): the same
+/// baseline copy.
+bool clipsAcceptAt(const RayQuery &query, const Ray &ray, float t, uint32_t layer);
+
 } // namespace mvcl::detail
