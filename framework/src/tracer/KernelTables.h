@@ -55,6 +55,10 @@ struct SingleRayKernels {
 /// the rays whose result changed, any hit the rays that are occluded.
 struct PacketKernels {
     const char *name; ///< what Tracer::packetIsa() reports
+    /// The packet's entry: the `count` rays (at most 16) of s.rays into the lanes of s.p, with
+    /// each ray's range end (s.tMax; `rayTMax`: null, or each ray's own upper bound),
+    /// validity (isValidQuery) and dominant axis (WatertightRay::kz), every lane at once.
+    void (*load)(PacketSetup &s, std::size_t count, const float *rayTMax);
     unsigned (*closestNearest)(const WideBvh &wide, unsigned lanes, PacketSetup &s, PacketBests<NearestHit> &best);
     unsigned (*closestLayered)(const WideBvh &wide, unsigned lanes, PacketSetup &s,
                                PacketBests<LayerPriorityHit> &best);

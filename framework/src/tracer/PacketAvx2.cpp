@@ -19,7 +19,7 @@ namespace mvcl::detail {
 
 namespace {
 // The walk's instances themselves, no wrapper: a call less per packet.
-constinit const PacketKernels kTable{"avx2", tracePacket<false, PacketBests<NearestHit>>,
+constinit const PacketKernels kTable{"avx2", loadPacket, tracePacket<false, PacketBests<NearestHit>>,
                                      tracePacket<false, PacketBests<LayerPriorityHit>>,
                                      tracePacket<true, UnusedBests>};
 } // namespace

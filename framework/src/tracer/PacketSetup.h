@@ -55,8 +55,9 @@ struct PacketSetup {
     const Ray *rays = nullptr;
     const RayQuery *query = nullptr;
     /// Each ray's upper bound: the query's, or min(query.tMax, tMax[i]) for anyHits() with
-    /// per-ray ranges (the expression a single query with that tMax would hold).
-    float tMax[kPacketLanes];
+    /// per-ray ranges (the expression a single query with that tMax would hold). Lanes without a
+    /// valid ray hold harmless constants here and in p; no walk ever reads them.
+    alignas(64) float tMax[kPacketLanes];
     float tMin = 0.f;   ///< the query's
     bool hasClips = false; ///< the query has clip volumes
     unsigned valid = 0; ///< rays with a valid query
@@ -70,25 +71,11 @@ struct PacketSetup {
     const WatertightRay4 *wray4[kPacketLanes];
     const WatertightRay *wrays[kPacketLanes];
 
-    /// `rayTMax`: null, or each ray's own upper bound (see tMax). Made by Tracer (baseline code)
-    /// only; the walks call context().
-    PacketSetup(std::span<const Ray> r, const RayQuery &q, const float *rayTMax = nullptr)
-        : rays(r.data()), query(&q), tMin(q.tMin), hasClips(q.clipCount() > 0) {
-        for (int i = 0; i < kPacketLanes; ++i) {
-            const bool inPacket = std::size_t(i) < r.size();
-            tMax[i] = inPacket && rayTMax ? std::min(q.tMax, rayTMax[i]) : q.tMax;
-            // Lanes without a valid ray get harmless constants; no walk ever reads them.
-            const bool ok = inPacket && isValidQuery(r[std::size_t(i)], q.tMin, tMax[i]);
-            valid |= unsigned(ok) << i;
-            const Ray &ray = ok ? r[std::size_t(i)] : Ray{glm::vec3(0.f), glm::vec3(1.f)};
-            p.ox[i] = ray.origin.x, p.oy[i] = ray.origin.y, p.oz[i] = ray.origin.z;
-            p.dx[i] = ray.direction.x, p.dy[i] = ray.direction.y, p.dz[i] = ray.direction.z;
-            // WatertightRay's choice, ties to the lower axis.
-            const float ax = std::fabs(ray.direction.x), ay = std::fabs(ray.direction.y), az = std::fabs(ray.direction.z);
-            const int kz = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
-            dominantAxisLanes[kz] |= unsigned(ok) << i;
-        }
-    }
+    /// Made by Tracer (baseline code) for the rays at `r`; the packet table's load()
+    /// (KernelTables.h) then fills tMax, valid, dominantAxisLanes and p, all lanes at once in its
+    /// instruction set. The walks call context().
+    PacketSetup(const Ray *r, const RayQuery &q)
+        : rays(r), query(&q), tMin(q.tMin), hasClips(q.clipCount() > 0) {}
     PacketSetup(const PacketSetup &) = delete;
     PacketSetup &operator=(const PacketSetup &) = delete;
 

@@ -30,10 +30,13 @@
 #include "WideBvh.h"
 
 #include <mvcl/core/FloatBits.h>
+#include <mvcl/tracer/Ray.h>
+#include <mvcl/tracer/RayQuery.h>
 #include <mvcl/tracer/TriangleIntersection.h>
 
 #include <algorithm>
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <type_traits>
@@ -49,11 +52,21 @@ struct Lanes {
     __m512 v;
     static Lanes load(const float *p) { return {_mm512_load_ps(p)}; }
     static Lanes all(float x) { return {_mm512_set1_ps(x)}; }
+    /// Lanes 0–7 from `lo`, 8–15 from `hi`.
+    static Lanes join(__m256 lo, __m256 hi) {
+        // The zero-masked insert with every lane set is the plain instruction (see max() below).
+        return {_mm512_castpd_ps(_mm512_maskz_insertf64x4(__mmask8(0xff), _mm512_castps_pd(_mm512_castps256_ps512(lo)),
+                                                          _mm256_castps_pd(hi), 1))};
+    }
+    /// p[i] in the lanes of `bits`, 0 elsewhere; nothing is read outside those lanes.
+    static Lanes loadSome(unsigned bits, const float *p) { return {_mm512_maskz_loadu_ps(__mmask16(bits), p)}; }
     void store(float *p) const { _mm512_store_ps(p, v); }
 #else
     __m256 lo, hi;
     static Lanes load(const float *p) { return {_mm256_load_ps(p), _mm256_load_ps(p + 8)}; }
     static Lanes all(float x) { return {_mm256_set1_ps(x), _mm256_set1_ps(x)}; }
+    static Lanes join(__m256 lo, __m256 hi) { return {lo, hi}; }
+    static Lanes loadSome(unsigned bits, const float *p);
     void store(float *p) const {
         _mm256_store_ps(p, lo);
         _mm256_store_ps(p + 8, hi);
@@ -151,6 +164,11 @@ inline __m256 laneMask(unsigned bits) {
 }
 inline Lanes select(unsigned bits, Lanes a, Lanes b) {
     return {_mm256_blendv_ps(b.lo, a.lo, laneMask(bits & 0xffu)), _mm256_blendv_ps(b.hi, a.hi, laneMask(bits >> 8))};
+}
+inline Lanes Lanes::loadSome(unsigned bits, const float *p) {
+    // vmaskmovps reads nothing in the lanes it leaves out (bits ≤ 8 set: the second half is empty).
+    const __m256i lo = _mm256_castps_si256(laneMask(bits & 0xffu)), hi = _mm256_castps_si256(laneMask(bits >> 8));
+    return {_mm256_maskload_ps(p, lo), bits >> 8 ? _mm256_maskload_ps(p + 8, hi) : _mm256_setzero_ps()};
 }
 inline Lanes keep(unsigned bits, Lanes a) {
     const __m256 nan = _mm256_set1_ps(std::numeric_limits<float>::quiet_NaN());
@@ -439,6 +457,79 @@ __attribute__((flatten)) unsigned walk(const WideBvh &wide, unsigned lanes, cons
             }
         }
     }
+}
+
+/// Rays [first, first + 8) of the `count` at `rays` as six columns of eight lanes, col[k] = the
+/// k-th float of Ray (origin x, y, z, direction x, y, z); lanes at or past `count` are zero. A
+/// Ray is eight floats (its cone's two last), so this is an 8 × 8 transpose of one load per ray,
+/// 22 shuffles instead of 48 scalar loads and stores. AVX2, which both units have.
+inline void rayColumns(const Ray *rays, int first, int count, __m256 col[6]) {
+    static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, direction) == 3 * sizeof(float),
+                  "a ray is one row of eight floats, origin and direction first");
+    __m256 r[8];
+    for (int j = 0; j < 8; ++j)
+        r[j] = first + j < count ? _mm256_loadu_ps(reinterpret_cast<const float *>(rays + first + j))
+                                 : _mm256_setzero_ps();
+    // Pairs of rows interleaved, then quarters: u[k] holds columns k (low half) and k + 4 (high
+    // half) of rows 0–3, v[k] the same of rows 4–7.
+    __m256 u[4], v[4];
+    for (int half = 0; half < 2; ++half) {
+        const __m256 *row = r + 4 * half;
+        const __m256 t0 = _mm256_unpacklo_ps(row[0], row[1]), t1 = _mm256_unpackhi_ps(row[0], row[1]);
+        const __m256 t2 = _mm256_unpacklo_ps(row[2], row[3]), t3 = _mm256_unpackhi_ps(row[2], row[3]);
+        __m256 *out = half ? v : u;
+        out[0] = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(1, 0, 1, 0));
+        out[1] = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(3, 2, 3, 2));
+        out[2] = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(1, 0, 1, 0));
+        out[3] = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(3, 2, 3, 2));
+    }
+    col[0] = _mm256_permute2f128_ps(u[0], v[0], 0x20);
+    col[1] = _mm256_permute2f128_ps(u[1], v[1], 0x20);
+    col[2] = _mm256_permute2f128_ps(u[2], v[2], 0x20);
+    col[3] = _mm256_permute2f128_ps(u[3], v[3], 0x20);
+    col[4] = _mm256_permute2f128_ps(u[0], v[0], 0x31);
+    col[5] = _mm256_permute2f128_ps(u[1], v[1], 0x31);
+}
+
+/// PacketKernels::load: PacketSetup's lanes for the `count` rays of s.rays, all at once. A lane
+/// is valid as isValidQuery() says (its tests on lanes: x − x = 0 for finite x, a non-zero
+/// direction component, tMin ≤ tMax ordered, tMax > 0), and its dominant axis is WatertightRay's
+/// choice, ties to the lower axis; lanes without a valid ray get the origin 0 and direction 1.
+inline void loadPacket(PacketSetup &s, std::size_t count, const float *rayTMax) {
+    const int n = int(count);
+    const RayQuery &q = *s.query;
+    __m256 lo[6], hi[6];
+    rayColumns(s.rays, 0, n, lo);
+    rayColumns(s.rays, 8, n, hi);
+    Lanes col[6];
+    for (int k = 0; k < 6; ++k) col[k] = Lanes::join(lo[k], hi[k]);
+    const unsigned inPacket = (1u << n) - 1u;
+    // min(rayTMax[i], q.tMax) is std::min(q.tMax, rayTMax[i]) (vminps returns its second operand
+    // unless the first is smaller).
+    Lanes tMax = Lanes::all(q.tMax);
+    if (rayTMax) tMax = select(inPacket, min(Lanes::loadSome(inPacket, rayTMax), tMax), tMax);
+    tMax.store(s.tMax);
+    const Lanes zero = Lanes::all(0.f), one = Lanes::all(1.f);
+    unsigned valid = inPacket;
+    for (int k = 0; k < 6; ++k) valid &= compare<_CMP_EQ_OQ>(sub(col[k], col[k]), zero);
+    valid &= compare<_CMP_NEQ_UQ>(col[3], zero) | compare<_CMP_NEQ_UQ>(col[4], zero) |
+             compare<_CMP_NEQ_UQ>(col[5], zero);
+    valid &= compare<_CMP_LE_OQ>(Lanes::all(q.tMin), tMax) & compare<_CMP_GT_OQ>(tMax, zero);
+    PacketRays &p = s.p;
+    select(valid, col[0], zero).store(p.ox);
+    select(valid, col[1], zero).store(p.oy);
+    select(valid, col[2], zero).store(p.oz);
+    const Lanes dx = select(valid, col[3], one), dy = select(valid, col[4], one), dz = select(valid, col[5], one);
+    dx.store(p.dx);
+    dy.store(p.dy);
+    dz.store(p.dz);
+    const Lanes ax = abs(dx), ay = abs(dy), az = abs(dz);
+    const unsigned xMajor = compare<_CMP_GE_OQ>(ax, ay) & compare<_CMP_GE_OQ>(ax, az);
+    const unsigned yMajor = ~xMajor & compare<_CMP_GE_OQ>(ay, az);
+    s.dominantAxisLanes[0] = valid & xMajor;
+    s.dominantAxisLanes[1] = valid & yMajor;
+    s.dominantAxisLanes[2] = valid & ~xMajor & ~yMajor;
+    s.valid = valid;
 }
 
 /// The packet query over the rays of `lanes` (s.valid or part of it): the slab constants of

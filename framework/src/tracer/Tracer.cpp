@@ -151,7 +151,8 @@ bool Tracer::Private::anyHitQuery(const Tracer &tracer, const Ray &ray, const Ra
 template <class Best, class MakeBest>
 uint32_t Tracer::Private::closestHitsInPacket(std::span<const Ray> rays, const RayQuery &query,
                                               std::span<Hit> hits, const MakeBest &makeBest) const {
-    detail::PacketSetup s(rays, query);
+    detail::PacketSetup s(rays.data(), query);
+    packets->load(s, rays.size(), nullptr);
     detail::PacketBests<Best> best;
     for (unsigned rest = s.valid; rest; rest &= rest - 1) new (&best.slot[std::countr_zero(rest)].value) Best(makeBest());
     const unsigned found = tracePacket<false>(s.valid, s, best);
@@ -216,7 +217,8 @@ uint32_t Tracer::Private::anyHitsInPacket(const Tracer &tracer, std::span<const 
             if (anyHitQuery(tracer, rays[i], query, tMax ? tMax[i] : query.tMax)) result |= 1u << i;
         return result;
     }
-    detail::PacketSetup s(rays, query, tMax);
+    detail::PacketSetup s(rays.data(), query);
+    packets->load(s, rays.size(), tMax);
     detail::UnusedBests unused;
     uint32_t result = 0;
     if (!planes.empty())
