@@ -48,9 +48,10 @@ struct PacketLane {
 };
 
 /// A packet query's rays: their origins and directions in lanes, and each ray's context and
-/// single-ray triangle-kernel constants, made only where the ray needs them: a leaf holding
-/// spheres, a zero edge function (the scalar fallback), the planes (triangle hits go through
-/// PacketLane).
+/// single-ray triangle-kernel constants, made only where the ray needs them: the context for a
+/// leaf holding spheres and for the planes (triangle hits go through PacketLane), the kernel
+/// constants for those leaves, for a leaf few rays reach and for a zero edge function (the
+/// scalar fallback).
 struct PacketSetup {
     const Ray *rays = nullptr;
     const RayQuery *query = nullptr;
@@ -62,18 +63,16 @@ struct PacketSetup {
     bool hasClips = false; ///< the query has clip volumes
     unsigned valid = 0; ///< rays with a valid query
     unsigned built = 0; ///< rays whose context exists
+    unsigned watertightBuilt = 0; ///< rays whose WatertightRay and WatertightRay4 exist
     unsigned dominantAxisLanes[3] = {}; ///< rays by WatertightRay::kz (the largest |direction| axis)
     PacketRays p;
     Slot<RayContext> contexts[kPacketLanes];
     Slot<WatertightRay> wrayStorage[kPacketLanes];
     Slot<WatertightRay4> wray4s[kPacketLanes];
-    // Set by context(i), read only after it.
-    const WatertightRay4 *wray4[kPacketLanes];
-    const WatertightRay *wrays[kPacketLanes];
 
     /// Made by Tracer (baseline code) for the rays at `r`; the packet table's load()
     /// (KernelTables.h) then fills tMax, valid, dominantAxisLanes and p, all lanes at once in its
-    /// instruction set. The walks call context().
+    /// instruction set. The walks call context() and watertight().
     PacketSetup(const Ray *r, const RayQuery &q)
         : rays(r), query(&q), tMin(q.tMin), hasClips(q.clipCount() > 0) {}
     PacketSetup(const PacketSetup &) = delete;
@@ -82,11 +81,17 @@ struct PacketSetup {
     MVCL_KERNEL_INLINE const RayContext &context(int i) {
         if (!((built >> i) & 1u)) {
             new (&contexts[i].value) RayContext(rays[i], *query, tMax[i]);
-            wrays[i] = new (&wrayStorage[i].value) WatertightRay(rays[i]);
-            wray4[i] = new (&wray4s[i].value) WatertightRay4(*wrays[i]);
             built |= 1u << i;
         }
         return contexts[i].value;
+    }
+    /// Ray i's constants of the single-ray triangle kernels (its WatertightRay is .ray).
+    MVCL_KERNEL_INLINE const WatertightRay4 &watertight(int i) {
+        if (!((watertightBuilt >> i) & 1u)) {
+            new (&wray4s[i].value) WatertightRay4(*new (&wrayStorage[i].value) WatertightRay(rays[i]));
+            watertightBuilt |= 1u << i;
+        }
+        return wray4s[i].value;
     }
 };
 

@@ -290,59 +290,91 @@ inline unsigned intersectAcrossRays(const Shear &r, const PrimBlock &b, int lane
     return hits;
 }
 
-/// testLeaf() for every ray of `active` at once, triangle by triangle (leaves without spheres),
-/// with the error bound where the closest-hit state uses it (layer priority). Same candidates
-/// with the same t, barycentrics and bounds, so the same results.
+/// At most this many rays reaching a leaf test it one ray at a time, four triangles per test
+/// with the single-ray kernel (watertightIntersect4), instead of each triangle against all 16
+/// lanes: on fine meshes a leaf is reached by one or two rays of the packet on average. A
+/// triangle across the rays costs about two 16-lane tests' worth of a block test in AVX2 (two
+/// halves), one in AVX-512.
+inline constexpr int kRayByRayLeafRays = MVCL_PACKET_AVX512 ? 2 : 4;
+
+/// testLeaf() for every ray of `active` (leaves without spheres): triangle by triangle across the
+/// rays (intersectAcrossRays), or ray by ray four triangles at a time where few rays reach the
+/// leaf, with the error bound where the closest-hit state uses it (layer priority). Either way
+/// each ray meets the leaf's triangles in the same order with the single-ray arithmetic: the same
+/// candidates with the same t, barycentrics and bounds, so the same results.
 /// Returns the rays whose result changed (closest hit) or that are occluded (any hit), with
 /// p.tCap and p.tHigh updated for them.
 template <bool AnyHit, class Bests>
-unsigned leafAcrossRays(uint32_t leaf, unsigned active, const PrimBlock *blocks, const PrimInfo *info,
-                        const Shear *shears, unsigned shearLanes[3], PacketSetup &s, Bests &best) {
+unsigned testLeafRays(uint32_t leaf, unsigned active, const PrimBlock *blocks, const PrimInfo *info,
+                      const Shear *shears, unsigned shearLanes[3], PacketSetup &s, Bests &best) {
     PacketRays &p = s.p;
     const uint32_t first = WideLeaf::firstBlock(leaf), last = first + WideLeaf::blockCount(leaf);
-    alignas(64) float t[kPacketLanes], b1[kPacketLanes], b2[kPacketLanes], tError[kPacketLanes];
+    const uint32_t layerMask = s.query->layerMask;
     constexpr bool kUsesTError = !AnyHit && std::remove_reference_t<decltype(best[0])>::kUsesTError;
     unsigned changed = 0;
+    unsigned open = active; ///< any hit: the rays not yet occluded
+    // A hit of ray i on triangle `lane` of block bi at (t, u, v): the query's range and clips, then
+    // the closest-hit state.
+    auto take = [&](int i, uint32_t bi, int lane, float ti, float u, float v, float tErr) {
+        const PacketLane c{s, i};
+        if (!c.acceptsT(ti)) return;
+        const PrimInfo &triangle = info[4 * bi + unsigned(lane)];
+        if (AnyHit) {
+            if (!c.acceptsPoint(ti, triangle.layer)) return;
+            changed |= 1u << i;
+            open &= ~(1u << i);
+            p.tHigh[i] = -kInfinity;
+            return;
+        }
+        if (!best[i].offer(c, triangleCandidate(triangle, ti, u, v), tErr)) return;
+        changed |= 1u << i;
+        p.tCap[i] = std::min(s.tMax[i], best[i].cap());
+        p.tHigh[i] = p.tCap[i] * kTraversalSlackUp;
+    };
+    if (std::popcount(active) <= kRayByRayLeafRays) {
+        for (unsigned rest = active; rest; rest &= rest - 1) {
+            const int i = std::countr_zero(rest);
+            const WatertightRay4 &ray = s.watertight(i);
+            for (uint32_t bi = first; bi < last; ++bi) {
+                const PrimBlock &block = blocks[bi];
+                const int lanes = triangleLanes(block, layerMask);
+                if (!lanes) continue;
+                TriangleHit4 th;
+                for (int hits = watertightIntersect4<!AnyHit, kUsesTError>(ray, block, lanes, p.tCap[i], th); hits;
+                     hits &= hits - 1) {
+                    const int lane = std::countr_zero(unsigned(hits));
+                    take(i, bi, lane, th.t[lane], th.b1[lane], th.b2[lane], kUsesTError ? th.tError[lane] : 0.f);
+                    if (AnyHit && !((open >> i) & 1u)) break;
+                }
+                if (AnyHit && !((open >> i) & 1u)) break;
+            }
+        }
+        return changed;
+    }
+    alignas(64) float t[kPacketLanes], b1[kPacketLanes], b2[kPacketLanes], tError[kPacketLanes];
     for (int kz = 0; kz < 3; ++kz) {
         unsigned rays = active & shearLanes[kz];
         if (!rays) continue;
         const Shear &shear = shears[kz];
         for (uint32_t bi = first; bi < last; ++bi) {
             const PrimBlock &block = blocks[bi];
-            for (unsigned lanes = unsigned(triangleLanes(block, s.query->layerMask)); lanes; lanes &= lanes - 1) {
+            for (unsigned lanes = unsigned(triangleLanes(block, layerMask)); lanes; lanes &= lanes - 1) {
                 const int lane = std::countr_zero(lanes);
                 unsigned onEdge = 0;
                 unsigned hits = intersectAcrossRays<!AnyHit, kUsesTError>(shear, block, lane, rays, Lanes::load(p.tCap), t,
                                                                          b1, b2, tError, onEdge);
-                // A hit of ray i at (t, u, v): the query's range and clips, then the closest-hit state.
-                auto take = [&](int i, float ti, float u, float v, float tErr) {
-                    const PacketLane c{s, i};
-                    if (!c.acceptsT(ti)) return;
-                    if (AnyHit) {
-                        if (!c.acceptsPoint(ti, info[4 * bi + unsigned(lane)].layer)) return;
-                        changed |= 1u << i;
-                        rays &= ~(1u << i);
-                        p.tHigh[i] = -kInfinity;
-                        return;
-                    }
-                    if (!best[i].offer(c, triangleCandidate(info[4 * bi + unsigned(lane)], ti, u, v), tErr)) return;
-                    changed |= 1u << i;
-                    p.tCap[i] = std::min(s.tMax[i], best[i].cap());
-                    p.tHigh[i] = p.tCap[i] * kTraversalSlackUp;
-                };
                 for (; hits; hits &= hits - 1) {
                     const int i = std::countr_zero(hits);
-                    take(i, t[i], b1[i], b2[i], kUsesTError ? tError[i] : 0.f);
+                    take(i, bi, lane, t[i], b1[i], b2[i], kUsesTError ? tError[i] : 0.f);
                 }
                 for (; onEdge; onEdge &= onEdge - 1) {
                     const int i = std::countr_zero(onEdge);
-                    s.context(i);
                     TriangleHit h;
-                    if (watertightIntersect(*s.wrays[i], block.vertex(lane, 0), block.vertex(lane, 1),
+                    if (watertightIntersect(s.watertight(i).ray, block.vertex(lane, 0), block.vertex(lane, 1),
                                             block.vertex(lane, 2), p.tCap[i], h))
-                        take(i, h.t, h.b1, h.b2, kUsesTError ? h.tError : 0.f);
+                        take(i, bi, lane, h.t, h.b1, h.b2, kUsesTError ? h.tError : 0.f);
                 }
-                if (AnyHit && !rays) break;
+                if (AnyHit && !(rays &= open)) break;
             }
             if (AnyHit && !rays) break;
         }
@@ -381,14 +413,14 @@ __attribute__((flatten)) unsigned walk(const WideBvh &wide, unsigned lanes, cons
         if (WideLeaf::isLeaf(cur)) {
             bool changed = false;
             if (!WideLeaf::hasSpheres(cur)) {
-                const unsigned bits = leafAcrossRays<AnyHit>(cur, active, blocks, info, shears, shearLanes, s, best);
+                const unsigned bits = testLeafRays<AnyHit>(cur, active, blocks, info, shears, shearLanes, s, best);
                 result |= bits;
                 changed = bits != 0;
             } else
             for (unsigned rest = active; rest; rest &= rest - 1) {
                 const int i = std::countr_zero(rest);
                 const RayContext &c = s.context(i);
-                if (!testLeaf<AnyHit>(cur, blocks, info, c, *s.wray4[i], best[i])) continue;
+                if (!testLeaf<AnyHit>(cur, blocks, info, c, s.watertight(i), best[i])) continue;
                 result |= 1u << i;
                 changed = true;
                 // An occluded ray is done: −∞ keeps it out of every box from now on.
