@@ -599,6 +599,7 @@ unsigned tracePacket(const WideBvh &wide, unsigned lanes, PacketSetup &s, Bests 
     tf = min(mul(sub(slab(1, false), k.oy), k.fy), tf);
     tf = min(mul(sub(slab(2, false), k.oz), k.fz), tf);
     const unsigned entering = lessEqual(tn, tf) & lanes;
+    if (!entering) return 0;
     // The watertight constants of each dominant axis the entering rays have (usually one).
     Shear shears[3];
     unsigned shearLanes[3] = {};
@@ -606,17 +607,21 @@ unsigned tracePacket(const WideBvh &wide, unsigned lanes, PacketSetup &s, Bests 
         shearLanes[axis] = s.dominantAxisLanes[axis] & entering;
         if (shearLanes[axis]) shears[axis] = makeShear(p, axis);
     }
+    // One walk per octant the entering rays have (coherent rays have one), taken in the order of
+    // their first rays: the walks share no ray, so their order changes no result.
     unsigned result = 0;
-    for (int octant = 0; octant < 8; ++octant) {
-        unsigned group = entering;
+    for (unsigned rest = entering; rest;) {
+        const int first = std::countr_zero(rest);
+        unsigned group = rest;
         int near[3], far[3];
         for (int axis = 0; axis < 3; ++axis) {
-            const bool neg = (octant >> axis) & 1;
+            const bool neg = (negative[axis] >> first) & 1u;
             group &= neg ? negative[axis] : ~negative[axis];
             near[axis] = neg ? axis + 3 : axis;
             far[axis] = neg ? axis : axis + 3;
         }
-        if (group) result |= walk<AnyHit>(wide, group, near, far, k, shears, shearLanes, s, best);
+        rest &= ~group;
+        result |= walk<AnyHit>(wide, group, near, far, k, shears, shearLanes, s, best);
     }
     return result;
 }
