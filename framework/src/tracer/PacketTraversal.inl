@@ -185,13 +185,64 @@ inline float minimum(unsigned bits, Lanes a) {
 }
 #endif
 
-/// The per-ray constants of the node test, in ray lanes.
-struct PacketConstants {
-    Lanes ox, oy, oz; ///< origin
-    Lanes ix, iy, iz; ///< RayContext::invDir
-    Lanes fx, fy, fz; ///< RayContext::invDirFar
-    Lanes tLow;       ///< RayContext::tLow
+/// The per-ray constants of the node test, in ray lanes of L (Lanes, or an AVX2 Half).
+template <class L>
+struct BoxRays {
+    L ox, oy, oz; ///< origin
+    L ix, iy, iz; ///< RayContext::invDir
+    L fx, fy, fz; ///< RayContext::invDirFar
+    L tLow;       ///< RayContext::tLow
 };
+using PacketConstants = BoxRays<Lanes>;
+
+#if !MVCL_PACKET_AVX512
+/// Eight rays, one half of Lanes: AVX2 node tests where every active ray of the packet lies in
+/// one half skip the other (two thirds of a fine mesh's node tests, where the packet has split up).
+struct Half {
+    __m256 v;
+    static Half all(float x) { return {_mm256_set1_ps(x)}; }
+};
+inline Half sub(Half a, Half b) { return {_mm256_sub_ps(a.v, b.v)}; }
+inline Half mul(Half a, Half b) { return {_mm256_mul_ps(a.v, b.v)}; }
+inline Half max(Half a, Half b) { return {_mm256_max_ps(a.v, b.v)}; }
+inline Half min(Half a, Half b) { return {_mm256_min_ps(a.v, b.v)}; }
+inline unsigned lessEqual(Half a, Half b) { return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ))); }
+/// Smallest lane of `bits` (not empty).
+inline float minimum(unsigned bits, Half a) {
+    const __m256 m = _mm256_blendv_ps(_mm256_set1_ps(kInfinity), a.v, laneMask(bits));
+    __m128 h = _mm_min_ps(_mm256_castps256_ps128(m), _mm256_extractf128_ps(m, 1));
+    h = _mm_min_ps(h, _mm_movehl_ps(h, h));
+    h = _mm_min_ss(h, _mm_shuffle_ps(h, h, 1));
+    return _mm_cvtss_f32(h);
+}
+/// Half `which` (0: rays 0–7, 1: rays 8–15) of the node test's constants.
+inline BoxRays<Half> half(const PacketConstants &k, int which) {
+    auto pick = [which](const Lanes &l) { return Half{which ? l.hi : l.lo}; };
+    return {pick(k.ox), pick(k.oy), pick(k.oz), pick(k.ix), pick(k.iy),
+            pick(k.iz), pick(k.fx), pick(k.fy), pick(k.fz), pick(k.tLow)};
+}
+#endif
+
+/// intersectBox() of child `lane` of `n` against the rays in the lanes of L, each lane with its
+/// ray's operands in the same order: the entry distance of every lane in `tn`, and the bits of
+/// the lanes that enter.
+template <class L>
+inline unsigned childAcrossRays(const WideNode &n, int lane, const int near[3], const int far[3], const BoxRays<L> &r,
+                                const L &tHigh, L &tn) {
+    const L tx0 = mul(sub(L::all(n.bounds[near[0]][lane]), r.ox), r.ix);
+    const L ty0 = mul(sub(L::all(n.bounds[near[1]][lane]), r.oy), r.iy);
+    const L tz0 = mul(sub(L::all(n.bounds[near[2]][lane]), r.oz), r.iz);
+    const L tx1 = mul(sub(L::all(n.bounds[far[0]][lane]), r.ox), r.fx);
+    const L ty1 = mul(sub(L::all(n.bounds[far[1]][lane]), r.oy), r.fy);
+    const L tz1 = mul(sub(L::all(n.bounds[far[2]][lane]), r.oz), r.fz);
+    tn = max(tx0, r.tLow);
+    tn = max(ty0, tn);
+    tn = max(tz0, tn);
+    L tf = min(tx1, tHigh);
+    tf = min(ty1, tf);
+    tf = min(tz1, tf);
+    return lessEqual(tn, tf);
+}
 
 /// The watertight test's per-ray constants (WatertightRay) in ray lanes, for the rays whose
 /// direction has its largest component on axis kz.
@@ -406,8 +457,6 @@ __attribute__((flatten)) unsigned walk(const WideBvh &wide, unsigned lanes, cons
     const WideNode *nodes = wide.nodes.get();
     const PrimBlock *blocks = wide.blocks.get();
     const PrimInfo *info = wide.info.get();
-    const Lanes ox = k.ox, oy = k.oy, oz = k.oz, ix = k.ix, iy = k.iy, iz = k.iz, fx = k.fx, fy = k.fy, fz = k.fz;
-    const Lanes tLow = k.tLow;
     Lanes tHigh = Lanes::load(p.tHigh);
 
     // A node pushes at most kWidth − 1 children (the nearest goes straight on): the bound of the
@@ -447,33 +496,37 @@ __attribute__((flatten)) unsigned walk(const WideBvh &wide, unsigned lanes, cons
             float key[kWidth];
             int order[kWidth];
             int count = 0;
-            for (unsigned children = childrenInLayers(n, layerMask); children; children &= children - 1) {
-                const int lane = std::countr_zero(children);
-                const Lanes tx0 = mul(sub(Lanes::all(n.bounds[near[0]][lane]), ox), ix);
-                const Lanes ty0 = mul(sub(Lanes::all(n.bounds[near[1]][lane]), oy), iy);
-                const Lanes tz0 = mul(sub(Lanes::all(n.bounds[near[2]][lane]), oz), iz);
-                const Lanes tx1 = mul(sub(Lanes::all(n.bounds[far[0]][lane]), ox), fx);
-                const Lanes ty1 = mul(sub(Lanes::all(n.bounds[far[1]][lane]), oy), fy);
-                const Lanes tz1 = mul(sub(Lanes::all(n.bounds[far[2]][lane]), oz), fz);
-                Lanes tn = max(tx0, tLow);
-                tn = max(ty0, tn);
-                tn = max(tz0, tn);
-                Lanes tf = min(tx1, tHigh);
-                tf = min(ty1, tf);
-                tf = min(tz1, tf);
-                const unsigned bits = lessEqual(tn, tf) & active;
-                if (!bits) continue;
-                tNear[lane] = tn;
-                hit[lane] = bits;
-                // Nearest-first by the packet's nearest entry (any order gives the same hits).
-                key[lane] = AnyHit ? 0.f : minimum(bits, tn);
-                int j = count++;
-                while (j > 0 && key[order[j - 1]] < key[lane]) {
-                    order[j] = order[j - 1];
-                    --j;
+            // The children against the rays in lanes of L (`shift`: where its first lane sits in
+            // the packet); `widen` makes packet lanes of its entry distances.
+            auto testChildren = [&](const auto &rays, const auto &tHighLanes, int shift, auto widen) {
+                for (unsigned children = childrenInLayers(n, layerMask); children; children &= children - 1) {
+                    const int lane = std::countr_zero(children);
+                    std::remove_cvref_t<decltype(tHighLanes)> tn;
+                    const unsigned bits = (childAcrossRays(n, lane, near, far, rays, tHighLanes, tn) << shift) & active;
+                    if (!bits) continue;
+                    tNear[lane] = widen(tn);
+                    hit[lane] = bits;
+                    // Nearest-first by the packet's nearest entry (any order gives the same hits).
+                    key[lane] = AnyHit ? 0.f : minimum(bits >> shift, tn);
+                    int j = count++;
+                    while (j > 0 && key[order[j - 1]] < key[lane]) {
+                        order[j] = order[j - 1];
+                        --j;
+                    }
+                    order[j] = lane;
                 }
-                order[j] = lane;
-            }
+            };
+            auto same = [](const Lanes &t) { return t; };
+#if MVCL_PACKET_AVX512
+            testChildren(k, tHigh, 0, same);
+#else
+            // The lanes of the other half only ever meet keep() and minimum(), which leave out
+            // the lanes without a bit.
+            auto both = [](const Half &t) { return Lanes{t.v, t.v}; };
+            if (!(active >> 8)) testChildren(half(k, 0), Half{tHigh.lo}, 0, both);
+            else if (!(active & 0xffu)) testChildren(half(k, 1), Half{tHigh.hi}, 8, both);
+            else testChildren(k, tHigh, 0, same);
+#endif
             if (count) {
                 // order[] runs from the farthest to the nearest: the nearest goes straight on.
                 for (int j = 0; j + 1 < count; ++j) {
