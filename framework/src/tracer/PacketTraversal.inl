@@ -125,6 +125,21 @@ inline float minimum(unsigned bits, Lanes a) {
     m = _mm512_maskz_min_ps(all, m, _mm512_maskz_permute_ps(all, m, _MM_SHUFFLE(2, 3, 0, 1)));
     return _mm512_cvtss_f32(m);
 }
+/// Lanes chosen by comparisons, in the form the instruction set combines and blends fastest
+/// (AVX-512: a mask register; AVX2: lanes of all ones), for the packet's entry, which combines
+/// many comparisons before it needs their bits.
+struct Mask {
+    __mmask16 k;
+};
+template <int P>
+inline Mask where(Lanes a, Lanes b) { return {_mm512_cmp_ps_mask(a.v, b.v, P)}; }
+inline Mask operator&(Mask a, Mask b) { return {__mmask16(a.k & b.k)}; }
+inline Mask operator|(Mask a, Mask b) { return {__mmask16(a.k | b.k)}; }
+/// The lanes of b that are not in a.
+inline Mask andNot(Mask a, Mask b) { return {__mmask16(~a.k & b.k)}; }
+inline Mask maskOf(unsigned bits) { return {__mmask16(bits)}; }
+inline unsigned bitsOf(Mask m) { return m.k; }
+inline Lanes select(Mask m, Lanes a, Lanes b) { return {_mm512_mask_mov_ps(b.v, m.k, a.v)}; }
 #else
 inline Lanes sub(Lanes a, Lanes b) { return {_mm256_sub_ps(a.lo, b.lo), _mm256_sub_ps(a.hi, b.hi)}; }
 inline Lanes mul(Lanes a, Lanes b) { return {_mm256_mul_ps(a.lo, b.lo), _mm256_mul_ps(a.hi, b.hi)}; }
@@ -182,6 +197,21 @@ inline float minimum(unsigned bits, Lanes a) {
     h = _mm_min_ps(h, _mm_movehl_ps(h, h));
     h = _mm_min_ss(h, _mm_shuffle_ps(h, h, 1));
     return _mm_cvtss_f32(h);
+}
+struct Mask {
+    __m256 lo, hi;
+};
+template <int P>
+inline Mask where(Lanes a, Lanes b) { return {_mm256_cmp_ps(a.lo, b.lo, P), _mm256_cmp_ps(a.hi, b.hi, P)}; }
+inline Mask operator&(Mask a, Mask b) { return {_mm256_and_ps(a.lo, b.lo), _mm256_and_ps(a.hi, b.hi)}; }
+inline Mask operator|(Mask a, Mask b) { return {_mm256_or_ps(a.lo, b.lo), _mm256_or_ps(a.hi, b.hi)}; }
+inline Mask andNot(Mask a, Mask b) { return {_mm256_andnot_ps(a.lo, b.lo), _mm256_andnot_ps(a.hi, b.hi)}; }
+inline Mask maskOf(unsigned bits) { return {laneMask(bits & 0xffu), laneMask(bits >> 8)}; }
+inline unsigned bitsOf(Mask m) {
+    return unsigned(_mm256_movemask_ps(m.lo)) | unsigned(_mm256_movemask_ps(m.hi)) << 8;
+}
+inline Lanes select(Mask m, Lanes a, Lanes b) {
+    return {_mm256_blendv_ps(b.lo, a.lo, m.lo), _mm256_blendv_ps(b.hi, a.hi, m.hi)};
 }
 #endif
 
@@ -597,18 +627,19 @@ inline void loadPacket(PacketSetup &s, std::size_t count, const float *rayTMax) 
     rayColumns(s.rays, 8, n, hi);
     Lanes col[6];
     for (int k = 0; k < 6; ++k) col[k] = Lanes::join(lo[k], hi[k]);
-    const unsigned inPacket = (1u << n) - 1u;
+    const unsigned inPacketBits = (1u << n) - 1u;
+    const Mask inPacket = maskOf(inPacketBits);
     // min(rayTMax[i], q.tMax) is std::min(q.tMax, rayTMax[i]) (vminps returns its second operand
     // unless the first is smaller).
     Lanes tMax = Lanes::all(q.tMax);
-    if (rayTMax) tMax = select(inPacket, min(Lanes::loadSome(inPacket, rayTMax), tMax), tMax);
+    if (rayTMax) tMax = select(inPacket, min(Lanes::loadSome(inPacketBits, rayTMax), tMax), tMax);
     tMax.store(s.tMax);
     const Lanes zero = Lanes::all(0.f), one = Lanes::all(1.f);
-    unsigned valid = inPacket;
-    for (int k = 0; k < 6; ++k) valid &= compare<_CMP_EQ_OQ>(sub(col[k], col[k]), zero);
-    valid &= compare<_CMP_NEQ_UQ>(col[3], zero) | compare<_CMP_NEQ_UQ>(col[4], zero) |
-             compare<_CMP_NEQ_UQ>(col[5], zero);
-    valid &= compare<_CMP_LE_OQ>(Lanes::all(q.tMin), tMax) & compare<_CMP_GT_OQ>(tMax, zero);
+    Mask valid = inPacket;
+    for (int k = 0; k < 6; ++k) valid = valid & where<_CMP_EQ_OQ>(sub(col[k], col[k]), zero);
+    valid = valid & (where<_CMP_NEQ_UQ>(col[3], zero) | where<_CMP_NEQ_UQ>(col[4], zero) |
+                     where<_CMP_NEQ_UQ>(col[5], zero));
+    valid = valid & where<_CMP_LE_OQ>(Lanes::all(q.tMin), tMax) & where<_CMP_GT_OQ>(tMax, zero);
     PacketRays &p = s.p;
     select(valid, col[0], zero).store(p.ox);
     select(valid, col[1], zero).store(p.oy);
@@ -618,12 +649,12 @@ inline void loadPacket(PacketSetup &s, std::size_t count, const float *rayTMax) 
     dy.store(p.dy);
     dz.store(p.dz);
     const Lanes ax = abs(dx), ay = abs(dy), az = abs(dz);
-    const unsigned xMajor = compare<_CMP_GE_OQ>(ax, ay) & compare<_CMP_GE_OQ>(ax, az);
-    const unsigned yMajor = ~xMajor & compare<_CMP_GE_OQ>(ay, az);
-    s.dominantAxisLanes[0] = valid & xMajor;
-    s.dominantAxisLanes[1] = valid & yMajor;
-    s.dominantAxisLanes[2] = valid & ~xMajor & ~yMajor;
-    s.valid = valid;
+    const Mask xMajor = where<_CMP_GE_OQ>(ax, ay) & where<_CMP_GE_OQ>(ax, az);
+    const Mask yMajor = andNot(xMajor, where<_CMP_GE_OQ>(ay, az));
+    s.dominantAxisLanes[0] = bitsOf(valid & xMajor);
+    s.dominantAxisLanes[1] = bitsOf(valid & yMajor);
+    s.dominantAxisLanes[2] = bitsOf(andNot(xMajor | yMajor, valid));
+    s.valid = bitsOf(valid);
 }
 
 /// The packet query over the rays of `lanes` (s.valid or part of it): the slab constants of

@@ -157,7 +157,8 @@ uint32_t Tracer::Private::closestHitsInPacket(std::span<const Ray> rays, const R
     for (unsigned rest = s.valid; rest; rest &= rest - 1) new (&best.slot[std::countr_zero(rest)].value) Best(makeBest());
     const unsigned found = tracePacket<false>(s.valid, s, best);
     uint32_t result = 0;
-    for (unsigned rest = s.valid; rest; rest &= rest - 1) {
+    // Without planes only the rays the walk found something for have a hit to resolve.
+    for (unsigned rest = planes.empty() ? found : s.valid; rest; rest &= rest - 1) {
         const int i = std::countr_zero(rest);
         const bool any = ((found >> i) & 1u) | (!planes.empty() && testPlanes<false>(s.context(i), best[i]));
         if (any && best[i].resolve(hits[std::size_t(i)])) result |= 1u << i;
