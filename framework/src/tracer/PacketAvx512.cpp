@@ -18,7 +18,7 @@
 namespace mvcl::detail {
 
 namespace {
-// The walk's instances themselves, no wrapper: a call less per packet.
+// The entry and the walk's instances themselves, no wrapper: a call less per packet.
 constinit const PacketKernels kTable{"avx512", loadPacket, tracePacket<false, PacketBests<NearestHit>>,
                                      tracePacket<false, PacketBests<LayerPriorityHit>>,
                                      tracePacket<true, UnusedBests>};

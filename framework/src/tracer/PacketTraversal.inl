@@ -2,8 +2,9 @@
 // Private: packet traversal of the wide BVH, 16 rays at once (a 4×4 tile of coherent rays),
 // compiled by two translation units: PacketAvx2.cpp (MVCL_PACKET_AVX512 0, built with -mavx2: the
 // 16 rays as two 8-lane halves) and PacketAvx512.cpp (MVCL_PACKET_AVX512 1, built with -mavx512f:
-// one 16-lane register). Each exports the walk as a table (KernelTables.h) and a Tracer picks one
-// at run time. Everything here lands in the unit's own namespace (KernelIsa.h).
+// one 16-lane register). Each exports the packet's entry (loadPacket: the rays into lanes) and the
+// walk as a table (KernelTables.h) and a Tracer picks one at run time. Everything here lands in
+// the unit's own namespace (KernelIsa.h).
 //
 // Each child box is tested against all rays of the packet (ray lanes, not child lanes), with the
 // arithmetic of intersectBox() lane by lane: same operands, same order, same NaN rule. A ray
@@ -12,8 +13,9 @@
 // whatever order the packet visits the leaves in: the results are those of Tracer::closestHit()
 // bit for bit. Leaves run the watertight test with the rays in the lanes (one triangle against
 // all rays: intersectAcrossRays, the 4-wide kernel's operations per ray and triangle, with the
-// error bound layer priority orders by), or, for leaves holding spheres, ray by ray through
-// testLeaf; either way every t, barycentric and bound is the single-ray arithmetic.
+// error bound layer priority orders by), or ray by ray through the single-ray kernels: leaves
+// that few rays reach (watertightIntersect4) and leaves holding spheres (testLeaf). Either way
+// every t, barycentric and bound is the single-ray arithmetic.
 //
 // Each walk shares one near/far slab choice: tracePacket() splits the rays by direction octant.
 
