@@ -1,4 +1,4 @@
-#include <mvcl/tracer/Tracer.h>
+#include "TracerPrivate.h"
 
 #include <mvcl/core/FloatBits.h>
 #include <mvcl/model/Scene.h>
@@ -14,7 +14,8 @@ namespace mvcl {
 
 SurfaceInteraction Tracer::interaction(const Ray &ray, const Hit &hit) const {
     SurfaceInteraction si;
-    const Scene &scene = this->scene();
+    // d->scene, not scene(): that is a call into Tracer.cpp, once per shaded point.
+    const Scene &scene = d->scene;
     switch (hit.kind) {
     case GeometryKind::Triangle: {
         const TriangleMesh &mesh = scene.meshes[hit.geometry];

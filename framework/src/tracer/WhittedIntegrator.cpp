@@ -172,7 +172,7 @@ struct WhittedIntegrator::LightAnswer {
 WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const Hit *closest, const RayPolicy &policy,
                                   const IntegratorPlan &plan, RayCounters &counters, float travelled, ShadingPoint &p,
                                   glm::vec3 &finished) const {
-    const Scene &scene = m_tracer.scene();
+    const Scene &scene = m_scene;
     const ShadingPolicy &shading = policy.shading;
     const RayQuery &query = policy.query(type);
     const bool isPrimary = type == RayType::Primary;
@@ -301,18 +301,22 @@ glm::vec3 WhittedIntegrator::shown(const ShadingPoint &p, const glm::vec3 &surfa
         if (edges.mode == EdgeLineMode::Outlines)
             lines = outlineCoverage(p.ray, policy.query(p.type), &p.hit, edges, counters);
         else if (p.hit.kind == GeometryKind::Triangle)
-            lines = detail::triangleEdgeCoverage(m_tracer.scene().meshes[p.hit.geometry], p.hit, p.coneWidth,
+            lines = detail::triangleEdgeCoverage(m_scene.meshes[p.hit.geometry], p.hit, p.coneWidth,
                                                  edges.widthPixels);
         front = glm::mix(front, edges.color, lines);
     }
     return p.alpha < 1.f ? p.alpha * front + (1.f - p.alpha) * p.behind : front;
 }
 
-glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy &policy, const IntegratorPlan &plan,
-                                         RayCounters &counters, const LightAnswer *answers,
-                                         const RayQuery &shadowQuery) const {
-    const Scene &scene = m_tracer.scene();
-    const ShadingPolicy &shading = policy.shading;
+glm::vec3 WhittedIntegrator::shadowBlockedShare(const ShadingPolicy &shading) {
+    // The blocked share of a light is dimmed by the policy's strength and tint.
+    return glm::mix(glm::vec3(1.f), shading.shadowTint, shading.shadowStrength);
+}
+
+glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const IntegratorPlan &plan, RayCounters &counters,
+                                         const LightAnswer *answers, const RayQuery &shadowQuery,
+                                         const glm::vec3 &shadowBlocked) const {
+    const Scene &scene = m_scene;
     const PhongTerms &m = p.surface.phong;
     const glm::vec3 &ns = p.ns;
     // Eq. 1: A + Σ I·(P·(L·N) + Ks·S·(N·H)^Ps) / D
@@ -340,9 +344,7 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy 
                                                plan.shadows);
                 if (plan.shadows != plan.forcedShadows) ++counters.skippedTransparentWalks;
             }
-            // The blocked share of the light is dimmed by the policy's strength and tint.
-            const glm::vec3 blocked = glm::mix(glm::vec3(1.f), shading.shadowTint, shading.shadowStrength);
-            transmittance = glm::vec3(passed) + (1.f - passed) * blocked;
+            transmittance = glm::vec3(passed) + (1.f - passed) * shadowBlocked;
         }
         const glm::vec3 h = glm::normalize(path.toLight - p.d);
         const float nDotH = std::max(glm::dot(ns, h), 0.f);
@@ -367,8 +369,8 @@ struct WhittedIntegrator::SecondaryRays {
 
 [[gnu::always_inline]] inline bool WhittedIntegrator::litColor(const ShadingPoint &p, const RayPolicy &policy,
                                                                const IntegratorPlan &plan, RayCounters &counters,
-                                                               const LightAnswer *answers, SecondaryRays &next,
-                                                               glm::vec3 &finished) const {
+                                                               const LightAnswer *answers, const glm::vec3 &shadowBlocked,
+                                                               SecondaryRays &next, glm::vec3 &finished) const {
     const ShadingPolicy &shading = policy.shading;
     const PhongTerms &m = p.surface.phong;
     const glm::vec3 &d = p.d, &ng = p.ng, &ns = p.ns;
@@ -379,9 +381,9 @@ struct WhittedIntegrator::SecondaryRays {
         // A cap is lit as if the cut were real: its shadow rays skip what the primary clips remove.
         RayQuery cappedShadowQuery = policy.query(RayType::Shadow);
         for (const ClipVolume &clip : policy.query(p.type).clips()) cappedShadowQuery.tryAddClip(clip);
-        local = directLight(p, policy, plan, counters, answers, cappedShadowQuery);
+        local = directLight(p, plan, counters, answers, cappedShadowQuery, shadowBlocked);
     } else {
-        local = directLight(p, policy, plan, counters, answers, policy.query(RayType::Shadow));
+        local = directLight(p, plan, counters, answers, policy.query(RayType::Shadow), shadowBlocked);
     }
 
     const int maxDepth = std::min(shading.maxDepth, kDepthCeiling);
@@ -459,7 +461,8 @@ glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int dept
     glm::vec3 finished;
     if (!prepareShading(ray, type, depth, closest, policy, plan, counters, travelled, p, finished)) return finished;
     SecondaryRays next;
-    if (!litColor(p, policy, plan, counters, nullptr, next, finished)) return finished;
+    if (!litColor(p, policy, plan, counters, nullptr, shadowBlockedShare(policy.shading), next, finished))
+        return finished;
     const glm::vec3 refracted =
         next.refracts ? trace(next.refractRay, RayType::Refraction, p.depth + 1, policy, plan, counters) : glm::vec3(0.f);
     const glm::vec3 reflected =
@@ -501,6 +504,14 @@ struct WhittedIntegrator::StreamScratch {
     std::vector<StreamRay> rays[2]; ///< reflection, refraction: the next waves
 };
 
+// Not inlined: the address it returns is then an ordinary pointer the caller keeps. Inlined, the
+// compiler recomputed the thread_local's address at every use, a __tls_get_addr call (this is a
+// shared library) once a ray.
+[[gnu::noinline]] WhittedIntegrator::StreamScratch &WhittedIntegrator::threadStreamScratch() {
+    thread_local StreamScratch scratch;
+    return scratch;
+}
+
 void WhittedIntegrator::shadeBatch(std::span<ShadingPoint> points, uint32_t lit, const Destination *to,
                                    const int *root, const RayPolicy &policy, const IntegratorPlan &plan,
                                    std::span<RayCounters> counters, StreamScratch &scratch,
@@ -512,7 +523,7 @@ void WhittedIntegrator::shadeBatch(std::span<ShadingPoint> points, uint32_t lit,
     if (plan.shadows == ShadowStage::AnyHit)
         for (uint32_t rest = lit; rest; rest &= rest - 1)
             if (!points[size_t(std::countr_zero(rest))].cap) packeted |= rest & ~(rest - 1);
-    const std::vector<Light> &lights = m_tracer.scene().lights;
+    const std::vector<Light> &lights = m_scene.lights;
     std::array<std::array<LightAnswer, kPacketLights>, Tracer::kPacketSize> answers;
     for (std::size_t l = 0; packeted && l < std::min(lights.size(), kPacketLights); ++l) {
         std::array<Ray, Tracer::kPacketSize> rays;
@@ -534,13 +545,15 @@ void WhittedIntegrator::shadeBatch(std::span<ShadingPoint> points, uint32_t lit,
             m_tracer.anyHits({rays.data(), n}, policy.query(RayType::Shadow), {distances.data(), n});
         for (std::size_t j = 0; j < n; ++j) answers[size_t(pointOf[j])][l].passed = (occluded >> j) & 1u ? 0.f : 1.f;
     }
+    const glm::vec3 shadowBlocked = shadowBlockedShare(policy.shading);
     for (uint32_t rest = lit; rest; rest &= rest - 1) {
         const std::size_t i = size_t(std::countr_zero(rest));
         const ShadingPoint &p = points[i];
         SecondaryRays next;
         glm::vec3 finished;
         RayCounters &own = counters[size_t(root[i])];
-        if (!litColor(p, policy, plan, own, (packeted >> i) & 1u ? answers[i].data() : nullptr, next, finished)) {
+        if (!litColor(p, policy, plan, own, (packeted >> i) & 1u ? answers[i].data() : nullptr, shadowBlocked, next,
+                      finished)) {
             deliver(to[i], finished, policy, plan, own, scratch, radiance);
             continue;
         }
@@ -572,7 +585,7 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
                                       " rays with as many hits, values and counters, not " + std::to_string(count) +
                                       ", " + std::to_string(primaryHits.size()) + ", " +
                                       std::to_string(radiance.size()) + " and " + std::to_string(counters.size()));
-    thread_local StreamScratch scratch;
+    StreamScratch &scratch = threadStreamScratch();
     scratch.waiting.clear();
     scratch.rays[0].clear();
     scratch.rays[1].clear();
@@ -589,7 +602,7 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
                              !detail::hasCappedClip(policy.query(RayType::Primary));
     RayCounters missCounts;
     const glm::vec3 missValue =
-        plainMisses ? finishSample(m_tracer.scene().background, policy, plan, missCounts) : glm::vec3(0.f);
+        plainMisses ? finishSample(m_scene.background, policy, plan, missCounts) : glm::vec3(0.f);
     uint32_t lit = 0; // rays whose point goes on to the light loop
     for (std::size_t i = 0; i < count; ++i) {
         RayCounters &own = counters[i];
