@@ -18,6 +18,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <new>
 #include <optional>
 #include <string>
 
@@ -191,12 +192,15 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
     p.type = type;
     p.depth = depth;
     p.travelled = travelled;
-    p.d = glm::normalize(ray.direction);
+    // glm::length and glm::normalize (d · (1 / sqrt(d·d))) from one square root.
     p.rayLength = glm::length(ray.direction);
+    p.d = ray.direction * (1.f / p.rayLength);
     // Where a primary ray crosses a capped clip surface into a closed solid, it shows the cut
     // face there, as a solid face of that solid's material, in front of whatever lies inside.
     std::optional<detail::ClipCap> &cap = p.cap;
-    // Each union member of the point is first written as p.member = ... (which starts its life).
+    // Each union member of the point starts its life as p.member = ..., or, for the results of
+    // interaction() and evaluate(), constructed in place by a placement new (an assignment
+    // returned them into a temporary and copied it, some hundred bytes a point).
     p.hit = closest ? *closest : Hit{};
     Hit &hit = p.hit;
     const bool found = closest && skipCutOutHits(ray, query, hit);
@@ -216,7 +220,7 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
         else
             cap.reset();
     }
-    if (found || cap) p.si = m_tracer.interaction(ray, hit);
+    if (found || cap) ::new (&p.si) SurfaceInteraction(m_tracer.interaction(ray, hit));
     if (!found && !cap) {
         // An outline is centred on the silhouette, so the background next to it gets half.
         if (!isPrimary || shading.edges.mode != EdgeLineMode::Outlines)
@@ -229,7 +233,7 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
     p.shownT = cap ? cap->t : hit.t;
     // The ray cone's width where it meets the surface picks the texture level.
     p.coneWidth = ray.coneWidth + ray.coneSpread * p.shownT * p.rayLength;
-    p.surface = m_materials->evaluate(hit, si, p.d, p.coneWidth);
+    ::new (&p.surface) detail::ShadedSurface(m_materials->evaluate(hit, si, p.d, p.coneWidth));
     detail::ShadedSurface &surface = p.surface;
     if (cap) {
         si.position = ray.at(cap->t);
