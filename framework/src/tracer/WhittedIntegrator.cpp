@@ -203,7 +203,8 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
     // returned them into a temporary and copied it, some hundred bytes a point).
     p.hit = closest ? *closest : Hit{};
     Hit &hit = p.hit;
-    const bool found = closest && skipCutOutHits(ray, query, hit);
+    // The scene test first: the call costs a shaded point more than the test (no mask: no call).
+    const bool found = closest && (!m_hasCutOutMaterials || skipCutOutHits(ray, query, hit));
     if (!found) hit = Hit{};
     SurfaceInteraction &si = p.si;
     if (mayCap) {
@@ -482,9 +483,9 @@ struct WhittedIntegrator::Destination {
     int index; ///< the primary sample (node = −1), or 0 = reflected, 1 = refracted
 };
 
-/// A secondary ray of the stream: traced with the others of its kind in packets.
-struct WhittedIntegrator::StreamRay {
-    Ray ray;
+/// Where a secondary ray of the stream comes from and where its radiance goes (the ray itself
+/// waits beside it, in StreamScratch::rays).
+struct WhittedIntegrator::StreamRoute {
     int depth;
     Destination to;
     int root; ///< the primary ray whose sample this ray serves (its rays are counted there)
@@ -498,14 +499,20 @@ struct WhittedIntegrator::WaitingPoint {
     float refractWeight;
     bool reflects;
     Destination to;
-    int root; ///< as StreamRay::root
+    int root; ///< as StreamRoute::root
     glm::vec3 secondary[2]; ///< reflected, refracted radiance (0 where not traced)
 };
 
 /// The stream's working memory, one per thread, reused block after block.
 struct WhittedIntegrator::StreamScratch {
     std::vector<WaitingPoint> waiting;
-    std::vector<StreamRay> rays[2]; ///< reflection, refraction: the next waves
+    /// Reflection, refraction: the next waves' rays, apart from their routes so that a wave is
+    /// traced straight from here (no copy into a packet array, whose rays' initialisers ran at
+    /// every wave).
+    std::vector<Ray> rays[2];
+    std::vector<StreamRoute> routes[2];
+    /// A wave's closest hits, here for the same reason.
+    std::array<Hit, Tracer::kPacketSize> hits;
 };
 
 // Not inlined: the address it returns is then an ordinary pointer the caller keeps. Inlined, the
@@ -563,10 +570,17 @@ void WhittedIntegrator::shadeBatch(std::span<ShadingPoint> points, uint32_t lit,
         }
         // The point waits for its secondary rays, which join the next waves.
         const int node = int(scratch.waiting.size());
-        scratch.waiting.push_back({next.color, next.reflectFactor, next.refractWeight, next.reflects, to[i], root[i],
-                                   {glm::vec3(0.f), glm::vec3(0.f)}});
-        if (next.reflects) scratch.rays[0].push_back({next.reflectRay, p.depth + 1, {node, 0}, root[i]});
-        if (next.refracts) scratch.rays[1].push_back({next.refractRay, p.depth + 1, {node, 1}, root[i]});
+        // reflectFactor is only set (and only read) where the point reflects.
+        scratch.waiting.push_back({next.color, next.reflects ? next.reflectFactor : glm::vec3(0.f), next.refractWeight,
+                                   next.reflects, to[i], root[i], {glm::vec3(0.f), glm::vec3(0.f)}});
+        if (next.reflects) {
+            scratch.rays[0].push_back(next.reflectRay);
+            scratch.routes[0].push_back({p.depth + 1, {node, 0}, root[i]});
+        }
+        if (next.refracts) {
+            scratch.rays[1].push_back(next.refractRay);
+            scratch.routes[1].push_back({p.depth + 1, {node, 1}, root[i]});
+        }
     }
 }
 
@@ -591,8 +605,10 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
                                       std::to_string(radiance.size()) + " and " + std::to_string(counters.size()));
     StreamScratch &scratch = threadStreamScratch();
     scratch.waiting.clear();
-    scratch.rays[0].clear();
-    scratch.rays[1].clear();
+    for (int kind = 0; kind < 2; ++kind) {
+        scratch.rays[kind].clear();
+        scratch.routes[kind].clear();
+    }
 
     // Wave 0: the primary points, kept to the end for shown() (edge lines, translucency).
     std::array<ShadingPoint, Tracer::kPacketSize> primary;
@@ -636,19 +652,20 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
         const int kind = read[0] < scratch.rays[0].size() ? 0 : 1;
         const RayType type = kind == 0 ? RayType::Reflection : RayType::Refraction;
         const std::size_t n = std::min(scratch.rays[kind].size() - read[kind], std::size_t(Tracer::kPacketSize));
-        std::array<Ray, Tracer::kPacketSize> rays;
-        std::array<Hit, Tracer::kPacketSize> hits;
+        // Valid until shadeBatch() below, which adds the next rays (and may move the vector).
+        const Ray *rays = scratch.rays[kind].data() + read[kind];
+        // The routes are copied: shadeBatch() reads them while it adds routes.
         std::array<Destination, Tracer::kPacketSize> batchTo;
         std::array<int, Tracer::kPacketSize> depth, batchRoot;
         for (std::size_t j = 0; j < n; ++j) {
-            const StreamRay &r = scratch.rays[kind][read[kind] + j];
-            rays[j] = r.ray;
+            const StreamRoute &r = scratch.routes[kind][read[kind] + j];
             batchTo[j] = r.to;
             depth[j] = r.depth;
             batchRoot[j] = r.root;
         }
         read[kind] += n;
-        const uint32_t found = m_tracer.closestHits({rays.data(), n}, policy.query(type), {hits.data(), n});
+        std::array<Hit, Tracer::kPacketSize> &hits = scratch.hits;
+        const uint32_t found = m_tracer.closestHits({rays, n}, policy.query(type), {hits.data(), n});
         uint32_t batchLit = 0;
         for (std::size_t j = 0; j < n; ++j) {
             RayCounters &own = counters[size_t(batchRoot[j])];

@@ -83,7 +83,7 @@ private:
     struct LightAnswer;
     struct SecondaryRays;
     struct Destination;
-    struct StreamRay;
+    struct StreamRoute;
     struct WaitingPoint;
     struct StreamScratch;
     /// The calling thread's stream scratch (reused block after block).
