@@ -68,12 +68,12 @@ SurfaceInteraction Tracer::interaction(const Ray &ray, const Hit &hit) const {
     }
     case GeometryKind::Plane: {
         const Plane &pl = scene.planes[hit.geometry];
-        const glm::dvec3 n = glm::normalize(glm::dvec3(pl.normal));
-        const double len = glm::length(glm::dvec3(pl.normal));
+        const Private::PlaneFrame &frame = d->planeFrames[hit.geometry];
+        const glm::dvec3 &n = frame.unitNormal;
         // o + t·d in double, then projected onto the plane along its normal: the residual error
         // is the float rounding of t (along the ray) and of the result.
         glm::dvec3 p = glm::dvec3(ray.origin) + double(hit.t) * glm::dvec3(ray.direction);
-        p -= (glm::dot(n, p) - double(pl.offset) / len) * n;
+        p -= (glm::dot(n, p) - frame.offset) * n;
         si.position = glm::vec3(p);
         const glm::vec3 td = hit.t * ray.direction;
         si.positionError = gamma(3) * (glm::abs(si.position) + glm::abs(td));
