@@ -326,9 +326,13 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const Integrator
     const glm::vec3 &ns = p.ns;
     // Eq. 1: A + Σ I·(P·(L·N) + Ks·S·(N·H)^Ps) / D
     glm::vec3 local = m.ambient * scene.ambientLight;
-    for (std::size_t l = 0; l < scene.lights.size(); ++l) {
-        const Light &light = scene.lights[l];
-        const LightAnswer *answer = answers && l < kPacketLights ? &answers[l] : nullptr;
+    // Pointers, not indices: lights.size() is a division by sizeof(Light) (44), at every step.
+    const Light *const lights = scene.lights.data(), *const lightsEnd = lights + scene.lights.size();
+    // The lights with an answer: the first kPacketLights, where shadeBatch() traced packets.
+    const Light *const answered = answers ? lights + std::min(scene.lights.size(), kPacketLights) : lights;
+    for (const Light *lightIt = lights; lightIt != lightsEnd; ++lightIt) {
+        const Light &light = *lightIt;
+        const LightAnswer *answer = lightIt < answered ? &answers[lightIt - lights] : nullptr;
         LightPath path;
         if (answer) {
             if (!answer->lit) continue;
