@@ -181,11 +181,29 @@ uint32_t Tracer::closestHits(std::span<const Ray> rays, const RayQuery &query, s
     checkPacketSize(rays.size(), hits.size());
     if (TracerQueryLog *log = d->queryLog.load(std::memory_order_relaxed)) log->recordClosestHits(rays, query);
     const bool layered = d->isLayered(query);
-    if (!d->packetsPay() || (layered && d->contactDistance > 0.f)) {
+    if (layered && d->contactDistance > 0.f) {
         // The contact tolerance re-queries per ray (closestHitWithContact): ray by ray.
         uint32_t result = 0;
         for (std::size_t i = 0; i < rays.size(); ++i)
             if (d->closestHitQuery(*this, rays[i], query, query.tMin, query.tMax, hits[i])) result |= 1u << i;
+        return result;
+    }
+    if (!d->packetsPay()) {
+        // Ray by ray, as closestHitQuery() would go for each: the kernel and the plane table are
+        // the same for all of them, found once (per ray they cost as much again as a small
+        // scene's traversal of a secondary ray).
+        const detail::SingleRayKernels &kernels = d->singleRays;
+        const detail::PlaneRecord *planes = d->planes.data();
+        const std::size_t planeCount = d->planes.size();
+        uint32_t result = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            if (!detail::isValidQuery(rays[i], query.tMin, query.tMax)) continue;
+            const bool found = layered ? kernels.queryLayered(d->wide, planes, planeCount, rays[i], query, query.tMin,
+                                                              query.tMax, 0.f, hits[i])
+                                       : kernels.queryNearest(d->wide, planes, planeCount, rays[i], query, query.tMin,
+                                                              query.tMax, hits[i]);
+            if (found) result |= 1u << i;
+        }
         return result;
     }
     if (layered)

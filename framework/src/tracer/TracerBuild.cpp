@@ -127,6 +127,7 @@ Tracer::Tracer(const Scene &scene, const TracerSettings &settings)
             detail::PlaneRecord{pl.normal / len, pl.offset / len, uint32_t(p), clampLayer(pl.layer)});
     }
     d->stats.planes = d->planes.size();
+    d->setPlaneFrames();
     for (const Chunk &ch : chunks)
         if (ch.valid) d->layers |= 1u << clampLayer(scene.meshes[ch.mesh].layer);
     for (const uint32_t s : validSpheres) d->layers |= 1u << clampLayer(scene.spheres[s].layer);
@@ -225,6 +226,7 @@ Tracer::Tracer(const Scene &scene, const Tracer &sameGeometry)
     });
     wide.rootMask = wide.nodeCount + wide.blockCount ? refreshLayerMasks(wide, wide.root) : 0;
     d->planes = from.planes;
+    d->setPlaneFrames();
     for (detail::PlaneRecord &pl : d->planes) pl.layer = clampLayer(scene.planes[pl.geometry].layer);
     d->layers = wide.rootMask;
     for (const detail::PlaneRecord &pl : d->planes) d->layers |= 1u << pl.layer;

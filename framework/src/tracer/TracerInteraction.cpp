@@ -1,4 +1,4 @@
-#include <mvcl/tracer/Tracer.h>
+#include "TracerPrivate.h"
 
 #include <mvcl/core/FloatBits.h>
 #include <mvcl/model/Scene.h>
@@ -14,7 +14,8 @@ namespace mvcl {
 
 SurfaceInteraction Tracer::interaction(const Ray &ray, const Hit &hit) const {
     SurfaceInteraction si;
-    const Scene &scene = this->scene();
+    // d->scene, not scene(): that is a call into Tracer.cpp, once per shaded point.
+    const Scene &scene = d->scene;
     switch (hit.kind) {
     case GeometryKind::Triangle: {
         const TriangleMesh &mesh = scene.meshes[hit.geometry];
@@ -67,12 +68,12 @@ SurfaceInteraction Tracer::interaction(const Ray &ray, const Hit &hit) const {
     }
     case GeometryKind::Plane: {
         const Plane &pl = scene.planes[hit.geometry];
-        const glm::dvec3 n = glm::normalize(glm::dvec3(pl.normal));
-        const double len = glm::length(glm::dvec3(pl.normal));
+        const Private::PlaneFrame &frame = d->planeFrames[hit.geometry];
+        const glm::dvec3 &n = frame.unitNormal;
         // o + t·d in double, then projected onto the plane along its normal: the residual error
         // is the float rounding of t (along the ray) and of the result.
         glm::dvec3 p = glm::dvec3(ray.origin) + double(hit.t) * glm::dvec3(ray.direction);
-        p -= (glm::dot(n, p) - double(pl.offset) / len) * n;
+        p -= (glm::dot(n, p) - frame.offset) * n;
         si.position = glm::vec3(p);
         const glm::vec3 td = hit.t * ray.direction;
         si.positionError = gamma(3) * (glm::abs(si.position) + glm::abs(td));

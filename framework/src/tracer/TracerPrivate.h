@@ -17,6 +17,7 @@
 #include <mvcl/model/Scene.h>
 #include <mvcl/tracer/Tracer.h>
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include <atomic>
@@ -47,6 +48,14 @@ struct Tracer::Private {
     const detail::SingleRayKernels &singleRays = detail::singleRayKernels();
     const detail::PacketKernels *packets = detail::packetKernels(); ///< null: packets go ray by ray
     std::vector<detail::PlaneRecord> planes;
+    /// Each plane of the scene (Scene::planes, valid or not) as Tracer::interaction() projects
+    /// hit points onto it, in double: normalize(normal) and offset / length(normal), found once
+    /// per plane rather than at every hit (setPlaneFrames()).
+    struct PlaneFrame {
+        glm::dvec3 unitNormal;
+        double offset;
+    };
+    std::vector<PlaneFrame> planeFrames;
     TracerBuildStats stats;
 
     /// Bit i set: layer i holds a triangle, sphere or plane. A query reaching one of them only
@@ -56,6 +65,16 @@ struct Tracer::Private {
     float contactDistance = 0.f;
 
     Private(const Scene &s, const TracerSettings &st) : scene(s), settings(st) {}
+
+    /// Fills planeFrames from the scene's planes.
+    void setPlaneFrames() {
+        planeFrames.clear();
+        planeFrames.reserve(scene.planes.size());
+        for (const Plane &pl : scene.planes) {
+            const glm::dvec3 normal(pl.normal);
+            planeFrames.push_back({glm::normalize(normal), double(pl.offset) / glm::length(normal)});
+        }
+    }
 
     /// Any hit over the BVH (closest hits go through singleRays.queryNearest and queryLayered).
     bool occluded(const detail::RayContext &c) const {

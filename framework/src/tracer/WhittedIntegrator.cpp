@@ -1,6 +1,7 @@
 #include <mvcl/tracer/WhittedIntegrator.h>
 
 #include "ClipCap.h"
+#include "Lanes3.h"
 #include "MaterialEvaluator.h"
 #include "SurfaceOverlays.h"
 
@@ -18,6 +19,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <new>
 #include <optional>
 #include <string>
 
@@ -172,7 +174,7 @@ struct WhittedIntegrator::LightAnswer {
 WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const Hit *closest, const RayPolicy &policy,
                                   const IntegratorPlan &plan, RayCounters &counters, float travelled, ShadingPoint &p,
                                   glm::vec3 &finished) const {
-    const Scene &scene = m_tracer.scene();
+    const Scene &scene = m_scene;
     const ShadingPolicy &shading = policy.shading;
     const RayQuery &query = policy.query(type);
     const bool isPrimary = type == RayType::Primary;
@@ -191,15 +193,19 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
     p.type = type;
     p.depth = depth;
     p.travelled = travelled;
-    p.d = glm::normalize(ray.direction);
+    // glm::length and glm::normalize (d · (1 / sqrt(d·d))) from one square root.
     p.rayLength = glm::length(ray.direction);
+    p.d = ray.direction * (1.f / p.rayLength);
     // Where a primary ray crosses a capped clip surface into a closed solid, it shows the cut
     // face there, as a solid face of that solid's material, in front of whatever lies inside.
     std::optional<detail::ClipCap> &cap = p.cap;
-    // Each union member of the point is first written as p.member = ... (which starts its life).
+    // Each union member of the point starts its life as p.member = ..., or, for the results of
+    // interaction() and evaluate(), constructed in place by a placement new (an assignment
+    // returned them into a temporary and copied it, some hundred bytes a point).
     p.hit = closest ? *closest : Hit{};
     Hit &hit = p.hit;
-    const bool found = closest && skipCutOutHits(ray, query, hit);
+    // The scene test first: the call costs a shaded point more than the test (no mask: no call).
+    const bool found = closest && (!m_hasCutOutMaterials || skipCutOutHits(ray, query, hit));
     if (!found) hit = Hit{};
     SurfaceInteraction &si = p.si;
     if (mayCap) {
@@ -216,7 +222,7 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
         else
             cap.reset();
     }
-    if (found || cap) p.si = m_tracer.interaction(ray, hit);
+    if (found || cap) ::new (&p.si) SurfaceInteraction(m_tracer.interaction(ray, hit));
     if (!found && !cap) {
         // An outline is centred on the silhouette, so the background next to it gets half.
         if (!isPrimary || shading.edges.mode != EdgeLineMode::Outlines)
@@ -229,7 +235,7 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
     p.shownT = cap ? cap->t : hit.t;
     // The ray cone's width where it meets the surface picks the texture level.
     p.coneWidth = ray.coneWidth + ray.coneSpread * p.shownT * p.rayLength;
-    p.surface = m_materials->evaluate(hit, si, p.d, p.coneWidth);
+    ::new (&p.surface) detail::ShadedSurface(m_materials->evaluate(hit, si, p.d, p.coneWidth));
     detail::ShadedSurface &surface = p.surface;
     if (cap) {
         si.position = ray.at(cap->t);
@@ -301,25 +307,35 @@ glm::vec3 WhittedIntegrator::shown(const ShadingPoint &p, const glm::vec3 &surfa
         if (edges.mode == EdgeLineMode::Outlines)
             lines = outlineCoverage(p.ray, policy.query(p.type), &p.hit, edges, counters);
         else if (p.hit.kind == GeometryKind::Triangle)
-            lines = detail::triangleEdgeCoverage(m_tracer.scene().meshes[p.hit.geometry], p.hit, p.coneWidth,
+            lines = detail::triangleEdgeCoverage(m_scene.meshes[p.hit.geometry], p.hit, p.coneWidth,
                                                  edges.widthPixels);
         front = glm::mix(front, edges.color, lines);
     }
     return p.alpha < 1.f ? p.alpha * front + (1.f - p.alpha) * p.behind : front;
 }
 
-glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy &policy, const IntegratorPlan &plan,
-                                         RayCounters &counters, const LightAnswer *answers,
-                                         const RayQuery &shadowQuery) const {
-    const Scene &scene = m_tracer.scene();
-    const ShadingPolicy &shading = policy.shading;
+glm::vec3 WhittedIntegrator::shadowBlockedShare(const ShadingPolicy &shading) {
+    // The blocked share of a light is dimmed by the policy's strength and tint.
+    return glm::mix(glm::vec3(1.f), shading.shadowTint, shading.shadowStrength);
+}
+
+glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const IntegratorPlan &plan, RayCounters &counters,
+                                         const LightAnswer *answers, const RayQuery &shadowQuery,
+                                         const glm::vec3 &shadowBlocked) const {
+    const Scene &scene = m_scene;
     const PhongTerms &m = p.surface.phong;
     const glm::vec3 &ns = p.ns;
-    // Eq. 1: A + Σ I·(P·(L·N) + Ks·S·(N·H)^Ps) / D
-    glm::vec3 local = m.ambient * scene.ambientLight;
-    for (std::size_t l = 0; l < scene.lights.size(); ++l) {
-        const Light &light = scene.lights[l];
-        const LightAnswer *answer = answers && l < kPacketLights ? &answers[l] : nullptr;
+    // Eq. 1: A + Σ I·(P·(L·N) + Ks·S·(N·H)^Ps) / D, the colour arithmetic in SSE lanes (Lanes3:
+    // the same operations, the same bits, a third of the instructions of glm's vec3).
+    using detail::Lanes3;
+    Lanes3 local = Lanes3::of(m.ambient) * Lanes3::of(scene.ambientLight);
+    // Pointers, not indices: lights.size() is a division by sizeof(Light) (44), at every step.
+    const Light *const lights = scene.lights.data(), *const lightsEnd = lights + scene.lights.size();
+    // The lights with an answer: the first kPacketLights, where shadeBatch() traced packets.
+    const Light *const answered = answers ? lights + std::min(scene.lights.size(), kPacketLights) : lights;
+    for (const Light *lightIt = lights; lightIt != lightsEnd; ++lightIt) {
+        const Light &light = *lightIt;
+        const LightAnswer *answer = lightIt < answered ? &answers[lightIt - lights] : nullptr;
         LightPath path;
         if (answer) {
             if (!answer->lit) continue;
@@ -328,7 +344,7 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy 
             continue;
         }
 
-        glm::vec3 transmittance(1.f);
+        Lanes3 transmittance = Lanes3::splat(1.f);
         if (plan.shadows != ShadowStage::Off) {
             float passed = 1.f; // what a shadow ray that hits nothing answers
             if (plan.shadows == ShadowStage::Unoccluded) {
@@ -340,17 +356,19 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const RayPolicy 
                                                plan.shadows);
                 if (plan.shadows != plan.forcedShadows) ++counters.skippedTransparentWalks;
             }
-            // The blocked share of the light is dimmed by the policy's strength and tint.
-            const glm::vec3 blocked = glm::mix(glm::vec3(1.f), shading.shadowTint, shading.shadowStrength);
-            transmittance = glm::vec3(passed) + (1.f - passed) * blocked;
+            transmittance = Lanes3::splat(passed) + Lanes3::splat(1.f - passed) * Lanes3::of(shadowBlocked);
         }
-        const glm::vec3 h = glm::normalize(path.toLight - p.d);
-        const float nDotH = std::max(glm::dot(ns, h), 0.f);
+        // glm::normalize(path.toLight - p.d): v · (1 / sqrt(v·v)).
+        Lanes3 h = Lanes3::of(path.toLight) - Lanes3::of(p.d);
+        h = h * Lanes3::splat(1.f / std::sqrt(dot(h, h)));
+        const float nDotH = std::max(dot(Lanes3::of(ns), h), 0.f);
         const float specular = m.specular > 0.f ? m.specular * std::pow(nDotH, m.shininess) : 0.f;
-        local += transmittance * light.intensity * (m.diffuse * path.nDotL + specular * m.specularColor) /
-                 path.attenuation;
+        local = local + transmittance * Lanes3::of(light.intensity) *
+                            (Lanes3::of(m.diffuse) * Lanes3::splat(path.nDotL) +
+                             Lanes3::splat(specular) * Lanes3::of(m.specularColor)) /
+                            Lanes3::splat(path.attenuation);
     }
-    return local;
+    return local.toVec3();
 }
 
 /// What a lit point still needs from its secondary rays: its own colour, and the reflected and
@@ -367,8 +385,8 @@ struct WhittedIntegrator::SecondaryRays {
 
 [[gnu::always_inline]] inline bool WhittedIntegrator::litColor(const ShadingPoint &p, const RayPolicy &policy,
                                                                const IntegratorPlan &plan, RayCounters &counters,
-                                                               const LightAnswer *answers, SecondaryRays &next,
-                                                               glm::vec3 &finished) const {
+                                                               const LightAnswer *answers, const glm::vec3 &shadowBlocked,
+                                                               SecondaryRays &next, glm::vec3 &finished) const {
     const ShadingPolicy &shading = policy.shading;
     const PhongTerms &m = p.surface.phong;
     const glm::vec3 &d = p.d, &ng = p.ng, &ns = p.ns;
@@ -379,9 +397,9 @@ struct WhittedIntegrator::SecondaryRays {
         // A cap is lit as if the cut were real: its shadow rays skip what the primary clips remove.
         RayQuery cappedShadowQuery = policy.query(RayType::Shadow);
         for (const ClipVolume &clip : policy.query(p.type).clips()) cappedShadowQuery.tryAddClip(clip);
-        local = directLight(p, policy, plan, counters, answers, cappedShadowQuery);
+        local = directLight(p, plan, counters, answers, cappedShadowQuery, shadowBlocked);
     } else {
-        local = directLight(p, policy, plan, counters, answers, policy.query(RayType::Shadow));
+        local = directLight(p, plan, counters, answers, policy.query(RayType::Shadow), shadowBlocked);
     }
 
     const int maxDepth = std::min(shading.maxDepth, kDepthCeiling);
@@ -459,7 +477,8 @@ glm::vec3 WhittedIntegrator::traceFromHit(const Ray &ray, RayType type, int dept
     glm::vec3 finished;
     if (!prepareShading(ray, type, depth, closest, policy, plan, counters, travelled, p, finished)) return finished;
     SecondaryRays next;
-    if (!litColor(p, policy, plan, counters, nullptr, next, finished)) return finished;
+    if (!litColor(p, policy, plan, counters, nullptr, shadowBlockedShare(policy.shading), next, finished))
+        return finished;
     const glm::vec3 refracted =
         next.refracts ? trace(next.refractRay, RayType::Refraction, p.depth + 1, policy, plan, counters) : glm::vec3(0.f);
     const glm::vec3 reflected =
@@ -475,9 +494,9 @@ struct WhittedIntegrator::Destination {
     int index; ///< the primary sample (node = −1), or 0 = reflected, 1 = refracted
 };
 
-/// A secondary ray of the stream: traced with the others of its kind in packets.
-struct WhittedIntegrator::StreamRay {
-    Ray ray;
+/// Where a secondary ray of the stream comes from and where its radiance goes (the ray itself
+/// waits beside it, in StreamScratch::rays).
+struct WhittedIntegrator::StreamRoute {
     int depth;
     Destination to;
     int root; ///< the primary ray whose sample this ray serves (its rays are counted there)
@@ -491,15 +510,29 @@ struct WhittedIntegrator::WaitingPoint {
     float refractWeight;
     bool reflects;
     Destination to;
-    int root; ///< as StreamRay::root
+    int root; ///< as StreamRoute::root
     glm::vec3 secondary[2]; ///< reflected, refracted radiance (0 where not traced)
 };
 
 /// The stream's working memory, one per thread, reused block after block.
 struct WhittedIntegrator::StreamScratch {
     std::vector<WaitingPoint> waiting;
-    std::vector<StreamRay> rays[2]; ///< reflection, refraction: the next waves
+    /// Reflection, refraction: the next waves' rays, apart from their routes so that a wave is
+    /// traced straight from here (no copy into a packet array, whose rays' initialisers ran at
+    /// every wave).
+    std::vector<Ray> rays[2];
+    std::vector<StreamRoute> routes[2];
+    /// A wave's closest hits, here for the same reason.
+    std::array<Hit, Tracer::kPacketSize> hits;
 };
+
+// Not inlined: the address it returns is then an ordinary pointer the caller keeps. Inlined, the
+// compiler recomputed the thread_local's address at every use, a __tls_get_addr call (this is a
+// shared library) once a ray.
+[[gnu::noinline]] WhittedIntegrator::StreamScratch &WhittedIntegrator::threadStreamScratch() {
+    thread_local StreamScratch scratch;
+    return scratch;
+}
 
 void WhittedIntegrator::shadeBatch(std::span<ShadingPoint> points, uint32_t lit, const Destination *to,
                                    const int *root, const RayPolicy &policy, const IntegratorPlan &plan,
@@ -512,7 +545,7 @@ void WhittedIntegrator::shadeBatch(std::span<ShadingPoint> points, uint32_t lit,
     if (plan.shadows == ShadowStage::AnyHit)
         for (uint32_t rest = lit; rest; rest &= rest - 1)
             if (!points[size_t(std::countr_zero(rest))].cap) packeted |= rest & ~(rest - 1);
-    const std::vector<Light> &lights = m_tracer.scene().lights;
+    const std::vector<Light> &lights = m_scene.lights;
     std::array<std::array<LightAnswer, kPacketLights>, Tracer::kPacketSize> answers;
     for (std::size_t l = 0; packeted && l < std::min(lights.size(), kPacketLights); ++l) {
         std::array<Ray, Tracer::kPacketSize> rays;
@@ -534,22 +567,31 @@ void WhittedIntegrator::shadeBatch(std::span<ShadingPoint> points, uint32_t lit,
             m_tracer.anyHits({rays.data(), n}, policy.query(RayType::Shadow), {distances.data(), n});
         for (std::size_t j = 0; j < n; ++j) answers[size_t(pointOf[j])][l].passed = (occluded >> j) & 1u ? 0.f : 1.f;
     }
+    const glm::vec3 shadowBlocked = shadowBlockedShare(policy.shading);
     for (uint32_t rest = lit; rest; rest &= rest - 1) {
         const std::size_t i = size_t(std::countr_zero(rest));
         const ShadingPoint &p = points[i];
         SecondaryRays next;
         glm::vec3 finished;
         RayCounters &own = counters[size_t(root[i])];
-        if (!litColor(p, policy, plan, own, (packeted >> i) & 1u ? answers[i].data() : nullptr, next, finished)) {
+        if (!litColor(p, policy, plan, own, (packeted >> i) & 1u ? answers[i].data() : nullptr, shadowBlocked, next,
+                      finished)) {
             deliver(to[i], finished, policy, plan, own, scratch, radiance);
             continue;
         }
         // The point waits for its secondary rays, which join the next waves.
         const int node = int(scratch.waiting.size());
-        scratch.waiting.push_back({next.color, next.reflectFactor, next.refractWeight, next.reflects, to[i], root[i],
-                                   {glm::vec3(0.f), glm::vec3(0.f)}});
-        if (next.reflects) scratch.rays[0].push_back({next.reflectRay, p.depth + 1, {node, 0}, root[i]});
-        if (next.refracts) scratch.rays[1].push_back({next.refractRay, p.depth + 1, {node, 1}, root[i]});
+        // reflectFactor is only set (and only read) where the point reflects.
+        scratch.waiting.push_back({next.color, next.reflects ? next.reflectFactor : glm::vec3(0.f), next.refractWeight,
+                                   next.reflects, to[i], root[i], {glm::vec3(0.f), glm::vec3(0.f)}});
+        if (next.reflects) {
+            scratch.rays[0].push_back(next.reflectRay);
+            scratch.routes[0].push_back({p.depth + 1, {node, 0}, root[i]});
+        }
+        if (next.refracts) {
+            scratch.rays[1].push_back(next.refractRay);
+            scratch.routes[1].push_back({p.depth + 1, {node, 1}, root[i]});
+        }
     }
 }
 
@@ -572,10 +614,12 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
                                       " rays with as many hits, values and counters, not " + std::to_string(count) +
                                       ", " + std::to_string(primaryHits.size()) + ", " +
                                       std::to_string(radiance.size()) + " and " + std::to_string(counters.size()));
-    thread_local StreamScratch scratch;
+    StreamScratch &scratch = threadStreamScratch();
     scratch.waiting.clear();
-    scratch.rays[0].clear();
-    scratch.rays[1].clear();
+    for (int kind = 0; kind < 2; ++kind) {
+        scratch.rays[kind].clear();
+        scratch.routes[kind].clear();
+    }
 
     // Wave 0: the primary points, kept to the end for shown() (edge lines, translucency).
     std::array<ShadingPoint, Tracer::kPacketSize> primary;
@@ -589,7 +633,7 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
                              !detail::hasCappedClip(policy.query(RayType::Primary));
     RayCounters missCounts;
     const glm::vec3 missValue =
-        plainMisses ? finishSample(m_tracer.scene().background, policy, plan, missCounts) : glm::vec3(0.f);
+        plainMisses ? finishSample(m_scene.background, policy, plan, missCounts) : glm::vec3(0.f);
     uint32_t lit = 0; // rays whose point goes on to the light loop
     for (std::size_t i = 0; i < count; ++i) {
         RayCounters &own = counters[i];
@@ -619,19 +663,20 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
         const int kind = read[0] < scratch.rays[0].size() ? 0 : 1;
         const RayType type = kind == 0 ? RayType::Reflection : RayType::Refraction;
         const std::size_t n = std::min(scratch.rays[kind].size() - read[kind], std::size_t(Tracer::kPacketSize));
-        std::array<Ray, Tracer::kPacketSize> rays;
-        std::array<Hit, Tracer::kPacketSize> hits;
+        // Valid until shadeBatch() below, which adds the next rays (and may move the vector).
+        const Ray *rays = scratch.rays[kind].data() + read[kind];
+        // The routes are copied: shadeBatch() reads them while it adds routes.
         std::array<Destination, Tracer::kPacketSize> batchTo;
         std::array<int, Tracer::kPacketSize> depth, batchRoot;
         for (std::size_t j = 0; j < n; ++j) {
-            const StreamRay &r = scratch.rays[kind][read[kind] + j];
-            rays[j] = r.ray;
+            const StreamRoute &r = scratch.routes[kind][read[kind] + j];
             batchTo[j] = r.to;
             depth[j] = r.depth;
             batchRoot[j] = r.root;
         }
         read[kind] += n;
-        const uint32_t found = m_tracer.closestHits({rays.data(), n}, policy.query(type), {hits.data(), n});
+        std::array<Hit, Tracer::kPacketSize> &hits = scratch.hits;
+        const uint32_t found = m_tracer.closestHits({rays, n}, policy.query(type), {hits.data(), n});
         uint32_t batchLit = 0;
         for (std::size_t j = 0; j < n; ++j) {
             RayCounters &own = counters[size_t(batchRoot[j])];

@@ -57,7 +57,7 @@ uint64_t solidKey(const Scene &scene, const Hit &hit) {
 } // namespace
 
 WhittedIntegrator::WhittedIntegrator(const Tracer &tracer)
-    : m_tracer(tracer), m_materials(std::make_unique<detail::MaterialEvaluator>(tracer.scene())) {
+    : m_tracer(tracer), m_scene(tracer.scene()), m_materials(std::make_unique<detail::MaterialEvaluator>(tracer.scene())) {
     const Scene &scene = tracer.scene();
     for (const Material &m : scene.materials) {
         // "> 0" here, "not ≤ 0" per layer below: a NaN transparency never forces the walk.

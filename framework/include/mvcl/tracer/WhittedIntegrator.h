@@ -23,6 +23,7 @@ namespace mvcl {
 
 class Tracer;
 struct Hit;
+struct Scene;
 struct RayQuery;
 namespace detail {
 class MaterialEvaluator;
@@ -82,9 +83,11 @@ private:
     struct LightAnswer;
     struct SecondaryRays;
     struct Destination;
-    struct StreamRay;
+    struct StreamRoute;
     struct WaitingPoint;
     struct StreamScratch;
+    /// The calling thread's stream scratch (reused block after block).
+    static StreamScratch &threadStreamScratch();
 
     /// The colour stage and the non-finite check every sample ends with.
     glm::vec3 finishSample(glm::vec3 c, const RayPolicy &policy, const IntegratorPlan &plan,
@@ -106,8 +109,10 @@ private:
     /// the final colour in `finished`, or true with the reflected and refracted rays to trace in
     /// `next`. `answers`, if not null, holds for each of the first lights its path to the point
     /// and what lightPassing() would answer (shadeBatch() traced those shadow rays as packets).
+    /// `shadowBlocked`: shadowBlockedShare(policy.shading), found once per batch.
     bool litColor(const ShadingPoint &point, const RayPolicy &policy, const IntegratorPlan &plan,
-                  RayCounters &counters, const LightAnswer *answers, SecondaryRays &next, glm::vec3 &finished) const;
+                  RayCounters &counters, const LightAnswer *answers, const glm::vec3 &shadowBlocked,
+                  SecondaryRays &next, glm::vec3 &finished) const;
     /// The stream's step for up to Tracer::kPacketSize prepared points (bit i of `lit`: points[i]
     /// goes on to the light loop): their shadow rays toward each light as packets, then litColor();
     /// a finished colour goes to to[i], a point with secondary rays waits in `scratch` and its
@@ -119,10 +124,14 @@ private:
     /// (through finishSample()).
     void deliver(const Destination &to, const glm::vec3 &value, const RayPolicy &policy, const IntegratorPlan &plan,
                  RayCounters &counters, StreamScratch &scratch, std::span<glm::vec3> radiance) const;
+    /// What reaches a point of the light a shadow ray finds blocked, per colour channel: the
+    /// policy's shadow strength and tint (the same for every point and light of a policy).
+    static glm::vec3 shadowBlockedShare(const ShadingPolicy &shading);
     /// Eq. 1's ambient and direct terms at the point, shadow rays under `shadowQuery` (paths and
-    /// answers from `answers` as in litColor()).
-    glm::vec3 directLight(const ShadingPoint &point, const RayPolicy &policy, const IntegratorPlan &plan,
-                          RayCounters &counters, const LightAnswer *answers, const RayQuery &shadowQuery) const;
+    /// answers from `answers` as in litColor()), blocked light scaled by `shadowBlocked`.
+    glm::vec3 directLight(const ShadingPoint &point, const IntegratorPlan &plan, RayCounters &counters,
+                          const LightAnswer *answers, const RayQuery &shadowQuery,
+                          const glm::vec3 &shadowBlocked) const;
     /// A surface colour as the point shows it: edge lines over it, blended over what lies behind.
     glm::vec3 shown(const ShadingPoint &point, const glm::vec3 &surfaceColor, const RayPolicy &policy,
                     RayCounters &counters) const;
@@ -148,6 +157,9 @@ private:
                        ShadowStage stage) const;
 
     const Tracer &m_tracer;
+    /// m_tracer.scene(), kept here: the shading reads it at every point, and Tracer::scene() is a
+    /// call into another translation unit.
+    const Scene &m_scene;
     /// Textures and alpha of materials at a hit (MaterialEvaluator.cpp).
     std::unique_ptr<detail::MaterialEvaluator> m_materials;
     /// Some material of the scene (used or not) has transparency > 0: forcing every stage walks
