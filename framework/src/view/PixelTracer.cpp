@@ -2,6 +2,7 @@
 
 #include "BlockEstimateScale_p.h"
 
+#include <mvcl/model/Scene.h>
 #include <mvcl/tracer/Hit.h>
 #include <mvcl/tracer/Tracer.h>
 
@@ -119,7 +120,14 @@ PixelTracer::PixelTracer(const WhittedIntegrator &integrator, const Camera &came
       m_costs(map.policies().size()), m_nanoseconds(map.policies().size(), 0), m_runStart(Clock::now()) {
     // Which stages each policy needs is decided here, once, not at every ray.
     m_plans.reserve(map.policies().size());
-    for (const PixelPolicy &policy : map.policies()) m_plans.push_back(integrator.plan(policy.ray, stages));
+    m_misses.resize(map.policies().size());
+    for (const PixelPolicy &policy : map.policies()) {
+        m_plans.push_back(integrator.plan(policy.ray, stages));
+        MissAnswer &miss = m_misses[m_plans.size() - 1];
+        miss.isPlain = integrator.plainMissRadiance(policy.ray, m_plans.back(), miss.radiance, miss.counters);
+    }
+    const Tracer &tracer = integrator.tracer();
+    if (tracer.scene().planes.empty()) m_footprint = camera.rasterFootprint(tracer.bounds(), map.width(), map.height());
 }
 
 void PixelTracer::chargeRun(int policy) {
@@ -300,6 +308,14 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
     }
 }
 
+bool PixelTracer::blockMisses(int x0, int y0, int policy, bool shaped) const {
+    // A magnifier's rays do not go through their pixels.
+    if (!m_footprint || shaped || !m_misses[size_t(policy)].isPlain) return false;
+    const Camera::RasterRect &r = *m_footprint;
+    // The block's sample positions lie in [x0, x0 + side) × [y0, y0 + side).
+    return float(x0 + kBlockSide) <= r.x0 || float(x0) >= r.x1 || float(y0 + kBlockSide) <= r.y0 || float(y0) >= r.y1;
+}
+
 void PixelTracer::addUniformBlockSamples(int x0, int y0, uint32_t begin, uint32_t end, int shared,
                                          PixelSamples *samples, std::size_t rowStride) {
     const PixelPolicy &policy = m_map.policy(uint16_t(shared));
@@ -307,6 +323,27 @@ void PixelTracer::addUniformBlockSamples(int x0, int y0, uint32_t begin, uint32_
     chargeRun(shared);
     PacketLanes &l = m_lanes;
     constexpr int kLanes = Tracer::kPacketSize;
+    const bool shaped = policy.isShaped();
+    if (blockMisses(x0, y0, shared, shaped)) {
+        // Every ray of the block misses: each sample is the policy's one miss value, with the
+        // counts the traced rays would have added (a primary ray each), and no ray is made.
+        const MissAnswer &miss = m_misses[size_t(shared)];
+        for (int i = 0; i < kLanes; ++i) {
+            PixelSamples &s = samples[size_t(i / kBlockSide) * rowStride + size_t(i % kBlockSide)];
+            for (uint32_t k = begin; k < end; ++k) {
+                s.add(k, miss.radiance);
+                m_rays += miss.counters;
+            }
+            s.rays += end - begin;
+            s.count = end;
+        }
+        const uint64_t rays = uint64_t(end - begin) * kLanes;
+        m_rays.primary += rays;
+        m_costs[size_t(shared)].rays += rays;
+        m_costs[size_t(shared)].pixels += kLanes;
+        m_samples += rays;
+        return;
+    }
     for (int i = 0; i < kLanes; ++i)
         l.sums[size_t(i)] = samples + size_t(i / kBlockSide) * rowStride + size_t(i % kBlockSide);
     std::array<glm::vec2, kLanes> pixelOf;
@@ -315,7 +352,6 @@ void PixelTracer::addUniformBlockSamples(int x0, int y0, uint32_t begin, uint32_
     std::array<PixelSequence, kLanes> sequenceOf;
     if (end > 1)
         for (int i = 0; i < kLanes; ++i) sequenceOf[size_t(i)] = PixelSequence(x0 + i % kBlockSide, y0 + i / kBlockSide, m_seed);
-    const bool shaped = policy.isShaped();
     uint64_t blockRays = 0;
     for (uint32_t k = begin; k < end; ++k) {
         for (int i = 0; i < kLanes; ++i) {

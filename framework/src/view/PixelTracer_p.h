@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace mvcl::detail {
@@ -166,6 +167,9 @@ private:
     /// Traces the first `lanes` lanes of m_lanes under policy `shared` and adds each value to its
     /// pixel's sums; returns the rays traced.
     uint64_t traceLanes(int lanes, int shared);
+    /// Whether every ray of the whole block at (x0, y0) misses everything under `policy` and shows
+    /// the same value (see m_footprint and MissAnswer).
+    bool blockMisses(int x0, int y0, int policy, bool shaped) const;
 
     /// A packet of primary rays being filled by addBlockSamples(): kept here, not on the stack
     /// of each call, so that a block does not construct 16 rays, hits and counters anew.
@@ -188,6 +192,18 @@ private:
     const PolicyMap &m_map;
     uint32_t m_seed;
     std::vector<IntegratorPlan> m_plans; ///< per policy of m_map
+    /// What a primary ray that meets nothing gives under a policy, where that is one value for
+    /// all of them (WhittedIntegrator::plainMissRadiance); per policy of m_map.
+    struct MissAnswer {
+        bool isPlain = false;
+        glm::vec3 radiance{0.f};
+        RayCounters counters; ///< added per such sample, besides its primary ray
+    };
+    std::vector<MissAnswer> m_misses;
+    /// Where the camera's rays can meet the tracer's bounded primitives (Camera::rasterFootprint
+    /// of Tracer::bounds()); none where every ray may (the box reaches behind the eye) or where
+    /// the scene has planes, which any ray may meet.
+    std::optional<Camera::RasterRect> m_footprint;
     RayCounters m_rays;
     uint64_t m_samples = 0;
     std::vector<PolicyCost> m_costs;
