@@ -539,5 +539,41 @@ TEST(Tracer, SpawnedRaysDoNotReintersect) {
     EXPECT_EQ(reHits, 0);
 }
 
+// Rays outside Tracer::bounds() are left out of whole frames untraced: every hit must lie in it.
+TEST(Tracer, BoundsHoldEveryHitAndLeavePlanesOut) {
+    const Scene cube = makeBuiltinScene("cube-in-cube");
+    // No degenerate triangles: the scene's own bounds, rounded outward by the BVH's boxes.
+    const Bounds3f cubeBox = Tracer(cube).bounds(), sceneBox = cube.bounds();
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_LE(cubeBox.min[axis], sceneBox.min[axis]);
+        EXPECT_GE(cubeBox.max[axis], sceneBox.max[axis]);
+        EXPECT_NEAR(cubeBox.min[axis], sceneBox.min[axis], 1e-5f);
+        EXPECT_NEAR(cubeBox.max[axis], sceneBox.max[axis], 1e-5f);
+    }
+
+    const Scene scene = makeSoup(2000, 5);
+    const Tracer tracer(scene);
+    const Bounds3f box = tracer.bounds();
+    ASSERT_FALSE(box.isEmpty());
+    std::mt19937 rng(11);
+    int inside = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const Ray ray = randomRay(rng, 3.f);
+        Hit hit;
+        if (!tracer.closestHit(ray, RayQuery{}, hit) || hit.kind == GeometryKind::Plane) continue;
+        const glm::vec3 p = ray.at(hit.t);
+        const glm::vec3 slack = 1e-5f * (glm::abs(p) + 1.f);
+        EXPECT_TRUE(glm::all(glm::greaterThanEqual(p, box.min - slack)) && glm::all(glm::lessThanEqual(p, box.max + slack)))
+            << "ray " << i;
+        ++inside;
+    }
+    EXPECT_GT(inside, 200);
+
+    Scene planesOnly;
+    planesOnly.materials.resize(1);
+    planesOnly.planes.push_back({"floor", {0.f, 1.f, 0.f}, 0.f, 0, 0});
+    EXPECT_TRUE(Tracer(planesOnly).bounds().isEmpty());
+}
+
 } // namespace
 } // namespace mvcl

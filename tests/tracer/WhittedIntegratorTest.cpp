@@ -296,3 +296,41 @@ TEST(WhittedIntegrator, RadianceFromHitsRejectsOversizedBlocks) {
                                              {}, {}, std::span<RayCounters>(counters.data(), 3), values),
                  Error);
 }
+
+// A sample known to miss (outside the camera footprint of the tracer's bounds) takes the miss
+// answer without a ray: it must be what a traced miss gives, with the same counts, and there must
+// be none where a miss draws something of its own.
+TEST(WhittedIntegrator, PlainMissRadianceIsATracedMiss) {
+    const Scene scene = makeBuiltinScene("cube-in-cube");
+    const Tracer tracer(scene);
+    const WhittedIntegrator integrator(tracer);
+    std::vector<RayPolicy> policies(3);
+    policies[1].color.matrix = glm::mat3(0.5f);
+    policies[1].color.offset = {0.1f, 0.f, 0.2f};
+    policies[2].shading.edges.mode = EdgeLineMode::Triangles;
+    const Ray away{{0.f, 1.f, 10.f}, {0.f, 0.f, 1.f}}; // leaves the scene, above the floor
+    for (const RayPolicy &policy : policies) {
+        const IntegratorPlan plan = integrator.plan(policy, StageSelection::SkipUnneeded);
+        RayCounters traced, plain;
+        const glm::vec3 expected = integrator.radiance(away, policy, plan, traced);
+        glm::vec3 value;
+        ASSERT_TRUE(integrator.plainMissRadiance(policy, plan, value, plain));
+        EXPECT_EQ(value, expected);
+        plain.primary += 1; // the primary ray the answer stands for
+        EXPECT_EQ(plain.total(), traced.total());
+        EXPECT_EQ(plain.skippedColorMaps, traced.skippedColorMaps);
+        EXPECT_EQ(plain.nonFiniteSamples, traced.nonFiniteSamples);
+    }
+    RayPolicy outlines;
+    outlines.shading.edges.mode = EdgeLineMode::Outlines;
+    RayPolicy capped;
+    ClipVolume cut = ClipVolume::halfSpace({0.f, 0.f, 1.f}, 0.f, ClipVolume::Keep::Outside);
+    cut.setCapStyle(ClipVolume::CapStyle::Solid);
+    capped.query(RayType::Primary).addClip(cut);
+    for (const RayPolicy &policy : {outlines, capped}) {
+        glm::vec3 value;
+        RayCounters counters;
+        EXPECT_FALSE(integrator.plainMissRadiance(policy, integrator.plan(policy, StageSelection::SkipUnneeded), value,
+                                                  counters));
+    }
+}

@@ -4,6 +4,11 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <random>
+#include <utility>
 #include <vector>
 
 using namespace mvcl;
@@ -72,4 +77,82 @@ TEST(Camera, GenerateRaysRefusesTooFewRays) {
     const std::vector<glm::vec2> positions(5, glm::vec2(1.f, 1.f));
     std::vector<Ray> rays(4);
     EXPECT_THROW(c.generateRays(positions, 10, 10, rays), Error);
+}
+
+namespace {
+
+/// Whether the ray meets the box, in double (slab test).
+bool meetsBox(const Ray &ray, const Bounds3f &box) {
+    double tNear = 0.0, tFar = INFINITY;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double o = ray.origin[axis], d = ray.direction[axis];
+        if (d == 0.0) {
+            if (o < box.min[axis] || o > box.max[axis]) return false;
+            continue;
+        }
+        double t0 = (double(box.min[axis]) - o) / d, t1 = (double(box.max[axis]) - o) / d;
+        if (t0 > t1) std::swap(t0, t1);
+        tNear = std::max(tNear, t0);
+        tFar = std::min(tFar, t1);
+    }
+    return tNear <= tFar;
+}
+
+} // namespace
+
+// The renderer leaves whole blocks of pixels outside the footprint of the scene's bounds
+// untraced: no ray through a position outside it may meet the box.
+TEST(Camera, RasterFootprintHoldsEveryRayThatMeetsTheBox) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(-1.f, 1.f);
+    const int width = 64, height = 48;
+    int bounded = 0, met = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+        Bounds3f box;
+        const glm::vec3 centre{unit(rng), unit(rng), unit(rng)};
+        box.expand(centre - glm::abs(glm::vec3(unit(rng), unit(rng), unit(rng))) * 0.5f);
+        box.expand(centre + glm::abs(glm::vec3(unit(rng), unit(rng), unit(rng))) * 0.5f);
+        const glm::vec3 eye = 4.f * glm::vec3(unit(rng), unit(rng), unit(rng));
+        const Camera camera = Camera::lookAt(eye, centre + 0.8f * glm::vec3(unit(rng), unit(rng), unit(rng)),
+                                             {0.f, 1.f, 0.f}, 20.f + 60.f * std::abs(unit(rng)));
+        const std::optional<Camera::RasterRect> rect = camera.rasterFootprint(box, width, height);
+        if (!rect) continue; // the box reaches beside or behind the eye
+        ++bounded;
+        for (float y = 0.f; y < float(height); y += 0.37f)
+            for (float x = 0.f; x < float(width); x += 0.37f) {
+                if (!meetsBox(camera.generateRay(x, y, width, height), box)) continue;
+                ++met;
+                ASSERT_TRUE(x >= rect->x0 && x <= rect->x1 && y >= rect->y0 && y <= rect->y1)
+                    << "trial " << trial << " at " << x << ", " << y;
+            }
+    }
+    EXPECT_GT(bounded, 20);
+    EXPECT_GT(met, 1000);
+}
+
+TEST(Camera, RasterFootprintOfABoxInViewBehindOrAroundTheEye) {
+    const Camera camera = Camera::lookAt({0.f, 0.f, 10.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 40.f);
+    Bounds3f small;
+    small.expand({-0.5f, -0.5f, -0.5f});
+    small.expand({0.5f, 0.5f, 0.5f});
+    const std::optional<Camera::RasterRect> rect = camera.rasterFootprint(small, 100, 100);
+    ASSERT_TRUE(rect);
+    // Centred; its near face (0.5 from the centre at depth 9.5) spans 2 · 50 · 0.5/(9.5 · tan 20°)
+    // pixels, plus the margin of two pixels on each side.
+    const float span = float(100.0 * 0.5 / (9.5 * std::tan(20.0 * 3.14159265358979 / 180.0))) + 4.f;
+    EXPECT_NEAR(rect->x0 + rect->x1, 100.f, 0.01f);
+    EXPECT_NEAR(rect->y0 + rect->y1, 100.f, 0.01f);
+    EXPECT_NEAR(rect->x1 - rect->x0, span, 0.01f);
+    EXPECT_NEAR(rect->y1 - rect->y0, span, 0.01f);
+    Bounds3f behind;
+    behind.expand({-1.f, -1.f, 11.f});
+    behind.expand({1.f, 1.f, 12.f});
+    EXPECT_FALSE(camera.rasterFootprint(behind, 100, 100));
+    Bounds3f around;
+    around.expand({-1.f, -1.f, 9.f});
+    around.expand({1.f, 1.f, 11.f});
+    EXPECT_FALSE(camera.rasterFootprint(around, 100, 100));
+    const std::optional<Camera::RasterRect> none = camera.rasterFootprint(Bounds3f{}, 100, 100);
+    ASSERT_TRUE(none);
+    EXPECT_LT(none->x1, none->x0);
 }

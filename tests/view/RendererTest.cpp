@@ -6,7 +6,9 @@
 #include <mvcl/core/Error.h>
 #include <mvcl/io/SceneLoader.h>
 #include <mvcl/model/BuiltinScenes.h>
+#include <mvcl/model/Scene.h>
 #include <mvcl/tracer/Tracer.h>
+#include <mvcl/tracer/WhittedIntegrator.h>
 
 #include <gtest/gtest.h>
 
@@ -119,4 +121,38 @@ TEST(Renderer, PolicyMapRevealsTheInnerCubeOnlyWhereAsked) {
         }
     EXPECT_GT(reds, 50) << "the inner (red) cube shows through on the left";
     EXPECT_GT(blues, 50) << "the outer (blue) cube still covers the right";
+}
+
+// Blocks of pixels outside the camera footprint of the tracer's bounds are left untraced (a scene
+// without planes, its model small in the image): each of their samples must be what tracing its
+// ray gives, with the same counts, as at every other pixel.
+TEST(Renderer, UntracedBlocksAroundTheModelEqualTracedRays) {
+    Scene scene = makeBuiltinScene("onion");
+    scene.planes.clear();
+    const Tracer tracer(scene);
+    const WhittedIntegrator integrator(tracer);
+    const Camera camera = Camera::lookAt({0.5f, 2.f, 9.f}, {0.3f, 1.f, 0.f}, {0.f, 1.f, 0.f}, 40.f);
+    const int width = 70, height = 52; // not whole blocks at the right and bottom edges
+    RayPolicy tinted;
+    tinted.color.matrix = glm::mat3(0.7f);
+    tinted.color.offset = {0.05f, 0.1f, 0.f};
+    for (const RayPolicy &policy : {RayPolicy{}, tinted}) {
+        const TestRender r = test::renderWithPolicy(tracer, camera, width, height, 1, 2, policy);
+        const IntegratorPlan plan = integrator.plan(policy, StageSelection::SkipUnneeded);
+        RayCounters expected;
+        int background = 0;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                RayCounters own;
+                const glm::vec3 value = integrator.radiance(
+                    camera.generateRay(float(x) + 0.5f, float(y) + 0.5f, width, height), policy, plan, own);
+                ASSERT_EQ(r.image.at(x, y), value) << x << ", " << y;
+                expected += own;
+                background += own.total() == 1;
+            }
+        EXPECT_GT(background, width * height / 2); // most blocks lie outside the model
+        EXPECT_EQ(r.stats.rays.primary, expected.primary);
+        EXPECT_EQ(r.stats.rays.total(), expected.total());
+        EXPECT_EQ(r.stats.rays.skippedColorMaps, expected.skippedColorMaps);
+    }
 }

@@ -239,4 +239,13 @@ Tracer::Tracer(const Scene &scene, const Tracer &sameGeometry)
 
 Tracer::~Tracer() = default;
 
+Bounds3f Tracer::bounds() const {
+    Bounds3f box;
+    if (d->wide.blockCount == 0) return box;
+    const float *b = d->wide.rootBounds; // [min x, min y, min z, max x, max y, max z]
+    box.min = {b[0], b[1], b[2]};
+    box.max = {b[3], b[4], b[5]};
+    return box;
+}
+
 } // namespace mvcl

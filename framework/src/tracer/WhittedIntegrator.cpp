@@ -82,6 +82,14 @@ glm::vec3 WhittedIntegrator::finishSample(glm::vec3 c, const RayPolicy &policy, 
     return glm::vec3(0.f);
 }
 
+bool WhittedIntegrator::plainMissRadiance(const RayPolicy &policy, const IntegratorPlan &plan, glm::vec3 &radiance,
+                                          RayCounters &counters) const {
+    if (policy.shading.edges.mode == EdgeLineMode::Outlines || detail::hasCappedClip(policy.query(RayType::Primary)))
+        return false;
+    radiance = finishSample(m_scene.background, policy, plan, counters);
+    return true;
+}
+
 glm::vec3 WhittedIntegrator::trace(const Ray &ray, RayType type, int depth, const RayPolicy &policy,
                                    const IntegratorPlan &plan, RayCounters &counters, float travelled) const {
     countRay(type, counters);
@@ -629,11 +637,9 @@ void WhittedIntegrator::radianceFromHits(std::span<const Ray> primaryRays, std::
     // the colour stage: one value for all of them (most rays of a model's frame), computed once
     // with the counts it adds to each.
     const uint32_t missed = ~hitMask & ((1u << count) - 1u); // count ≤ kPacketSize < 32
-    const bool plainMisses = missed && policy.shading.edges.mode != EdgeLineMode::Outlines &&
-                             !detail::hasCappedClip(policy.query(RayType::Primary));
     RayCounters missCounts;
-    const glm::vec3 missValue =
-        plainMisses ? finishSample(m_scene.background, policy, plan, missCounts) : glm::vec3(0.f);
+    glm::vec3 missValue(0.f);
+    const bool plainMisses = missed && plainMissRadiance(policy, plan, missValue, missCounts);
     uint32_t lit = 0; // rays whose point goes on to the light loop
     for (std::size_t i = 0; i < count; ++i) {
         RayCounters &own = counters[i];

@@ -4,6 +4,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <glm/vec3.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -102,6 +103,35 @@ void Camera::generateRays(std::span<const glm::vec2> positions, int width, int h
     }
 #endif
     for (; i < positions.size(); ++i) rays[i] = generateRay(positions[i].x, positions[i].y, width, height);
+}
+
+std::optional<Camera::RasterRect> Camera::rasterFootprint(const Bounds3f &box, int width, int height) const {
+    if (box.isEmpty()) return RasterRect{1.f, 1.f, 0.f, 0.f};
+    // generateRay() maps raster (x, y) to the direction M·(sx, sy, −1) with
+    // sx = (2x/w − 1)·tan·aspect and sy = (1 − 2y/h)·tan: a point q = Mᵀ(p − eye) in camera space
+    // (M is a rotation, its transpose its inverse up to float rounding) lies on the ray through
+    // x = (qx/(−qz)/(tan·aspect) + 1)·w/2, y = (1 − qy/(−qz)/tan)·h/2. A convex box projects
+    // into the hull of its corners' projections.
+    const double aspect = double(width) / double(height), tanHalf = double(m_tanHalfFov);
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec3 p((corner & 1 ? box.max : box.min).x, (corner & 2 ? box.max : box.min).y,
+                           (corner & 4 ? box.max : box.min).z);
+        const glm::dvec3 rel = p - glm::dvec3(m_eye);
+        double q[3];
+        for (int axis = 0; axis < 3; ++axis) q[axis] = glm::dot(glm::dvec3(m_sceneFromCamera[axis]), rel);
+        // In front of the eye by a clear margin, or the projection is unbounded.
+        const double depth = -q[2];
+        if (!(depth > 1e-4 * glm::length(rel))) return std::nullopt;
+        const double x = (q[0] / depth / (tanHalf * aspect) + 1.0) * 0.5 * double(width);
+        const double y = (1.0 - q[1] / depth / tanHalf) * 0.5 * double(height);
+        x0 = std::min(x0, x);
+        x1 = std::max(x1, x);
+        y0 = std::min(y0, y);
+        y1 = std::max(y1, y);
+    }
+    constexpr double kMargin = 2.0;
+    return RasterRect{float(x0 - kMargin), float(y0 - kMargin), float(x1 + kMargin), float(y1 + kMargin)};
 }
 
 void Camera::update() {

@@ -2,6 +2,7 @@
 
 #include "BlockEstimateScale_p.h"
 
+#include <mvcl/model/Scene.h>
 #include <mvcl/tracer/Hit.h>
 #include <mvcl/tracer/Tracer.h>
 
@@ -119,7 +120,14 @@ PixelTracer::PixelTracer(const WhittedIntegrator &integrator, const Camera &came
       m_costs(map.policies().size()), m_nanoseconds(map.policies().size(), 0), m_runStart(Clock::now()) {
     // Which stages each policy needs is decided here, once, not at every ray.
     m_plans.reserve(map.policies().size());
-    for (const PixelPolicy &policy : map.policies()) m_plans.push_back(integrator.plan(policy.ray, stages));
+    m_misses.resize(map.policies().size());
+    for (const PixelPolicy &policy : map.policies()) {
+        m_plans.push_back(integrator.plan(policy.ray, stages));
+        MissAnswer &miss = m_misses[m_plans.size() - 1];
+        miss.isPlain = integrator.plainMissRadiance(policy.ray, m_plans.back(), miss.radiance, miss.counters);
+    }
+    const Tracer &tracer = integrator.tracer();
+    if (tracer.scene().planes.empty()) m_footprint = camera.rasterFootprint(tracer.bounds(), map.width(), map.height());
 }
 
 void PixelTracer::chargeRun(int policy) {
@@ -220,6 +228,21 @@ int PixelTracer::blockPolicy(int x0, int y0, int x1, int y1) const {
 void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t *endSample,
                                   PixelSamples *samples, std::size_t rowStride) {
     const int side = x1 - x0, count = side * (y1 - y0);
+    const int shared = count < 2 ? -1 : blockPolicy(x0, y0, x1, y1);
+    if (shared >= 0 && count == Tracer::kPacketSize) {
+        // The common block: all 16 pixels at the same count taking the same samples (every pass
+        // of fixed or progressive sampling, and every full pass). Sample k of the block is one
+        // packet, lane i pixel i, which is how the general loop below would fill it too.
+        const uint32_t begin = samples->count, end = endSample[0];
+        bool alike = true;
+        for (int i = 0; i < count; ++i)
+            alike &= samples[size_t(i / kBlockSide) * rowStride + size_t(i % kBlockSide)].count == begin &&
+                     endSample[i] == end;
+        if (alike && begin < end) {
+            addUniformBlockSamples(x0, y0, begin, end, shared, samples, rowStride);
+            return;
+        }
+    }
     // Pixel i of the block, row by row, and its sums (a table, not i / side and i % side: two
     // integer divisions per pixel and loop showed in the profile).
     std::array<int, kBlockSide * kBlockSide> xOf, yOf;
@@ -230,15 +253,11 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
             yOf[size_t(i)] = y;
             sumsOf[size_t(i)] = samples + size_t(y - y0) * rowStride + size_t(x - x0);
         }
-    const int shared = count < 2 ? -1 : blockPolicy(x0, y0, x1, y1);
     if (shared < 0) {
         for (int i = 0; i < count; ++i) addSamples(xOf[size_t(i)], yOf[size_t(i)], endSample[i], *sumsOf[size_t(i)]);
         return;
     }
     const PixelPolicy &policy = m_map.policy(uint16_t(shared));
-    const IntegratorPlan &plan = m_plans[size_t(shared)];
-    const RayQuery &query = policy.ray.query(RayType::Primary);
-    const Tracer &tracer = m_integrator.tracer();
     const int width = m_map.width(), height = m_map.height();
     chargeRun(shared);
     uint64_t blockRays = 0;
@@ -260,23 +279,6 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
     const bool shaped = policy.isShaped();
     PacketLanes &l = m_lanes;
     int lanes = 0;
-    const auto traceLanes = [&] {
-        const size_t n = size_t(lanes);
-        m_camera.generateRays({l.positions.data(), n}, width, height, {l.rays.data(), n});
-        const uint32_t found = tracer.closestHits({l.rays.data(), n}, query, {l.hits.data(), n});
-        m_integrator.radianceFromHits({l.rays.data(), n}, {l.hits.data(), n}, found, policy.ray, plan,
-                                      {l.counters.data(), n}, {l.values.data(), n});
-        for (size_t j = 0; j < n; ++j) {
-            const glm::vec3 &value = l.values[j];
-            PixelSamples &s = *l.sums[j];
-            s.add(l.sample[j], value);
-            const uint64_t total = l.counters[j].total(), rays = total - l.totals[j];
-            l.totals[j] = total;
-            s.rays += uint32_t(rays);
-            blockRays += rays;
-        }
-        lanes = 0;
-    };
     // Sample by sample, and a packet filled across samples: a refinement pass where a few pixels
     // of the block take many samples still traces full packets (of rays through one pixel or two,
     // the most coherent there are). Each pixel's sums still add its samples in order k = count,
@@ -289,10 +291,13 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
             l.positions[size_t(lanes)] = shaped ? policy.samplePosition(position, width, height) : position;
             l.sums[size_t(lanes)] = sumsOf[size_t(i)];
             l.sample[size_t(lanes++)] = k;
-            if (lanes == Tracer::kPacketSize) traceLanes();
+            if (lanes == Tracer::kPacketSize) {
+                blockRays += traceLanes(lanes, shared);
+                lanes = 0;
+            }
         }
     }
-    if (lanes > 0) traceLanes();
+    if (lanes > 0) blockRays += traceLanes(lanes, shared);
     m_costs[size_t(shared)].rays += blockRays;
     for (int i = 0; i < count; ++i) {
         // As addSamples(): a pixel counts once per call, and only if it took samples.
@@ -301,6 +306,86 @@ void PixelTracer::addBlockSamples(int x0, int y0, int x1, int y1, const uint32_t
         m_samples += endSample[i] - begin[size_t(i)];
         sumsOf[size_t(i)]->count = endSample[i];
     }
+}
+
+bool PixelTracer::blockMisses(int x0, int y0, int policy, bool shaped) const {
+    // A magnifier's rays do not go through their pixels.
+    if (!m_footprint || shaped || !m_misses[size_t(policy)].isPlain) return false;
+    const Camera::RasterRect &r = *m_footprint;
+    // The block's sample positions lie in [x0, x0 + side) × [y0, y0 + side).
+    return float(x0 + kBlockSide) <= r.x0 || float(x0) >= r.x1 || float(y0 + kBlockSide) <= r.y0 || float(y0) >= r.y1;
+}
+
+void PixelTracer::addUniformBlockSamples(int x0, int y0, uint32_t begin, uint32_t end, int shared,
+                                         PixelSamples *samples, std::size_t rowStride) {
+    const PixelPolicy &policy = m_map.policy(uint16_t(shared));
+    const int width = m_map.width(), height = m_map.height();
+    chargeRun(shared);
+    PacketLanes &l = m_lanes;
+    constexpr int kLanes = Tracer::kPacketSize;
+    const bool shaped = policy.isShaped();
+    if (blockMisses(x0, y0, shared, shaped)) {
+        // Every ray of the block misses: each sample is the policy's one miss value, with the
+        // counts the traced rays would have added (a primary ray each), and no ray is made.
+        const MissAnswer &miss = m_misses[size_t(shared)];
+        for (int i = 0; i < kLanes; ++i) {
+            PixelSamples &s = samples[size_t(i / kBlockSide) * rowStride + size_t(i % kBlockSide)];
+            for (uint32_t k = begin; k < end; ++k) {
+                s.add(k, miss.radiance);
+                m_rays += miss.counters;
+            }
+            s.rays += end - begin;
+            s.count = end;
+        }
+        const uint64_t rays = uint64_t(end - begin) * kLanes;
+        m_rays.primary += rays;
+        m_costs[size_t(shared)].rays += rays;
+        m_costs[size_t(shared)].pixels += kLanes;
+        m_samples += rays;
+        return;
+    }
+    for (int i = 0; i < kLanes; ++i)
+        l.sums[size_t(i)] = samples + size_t(i / kBlockSide) * rowStride + size_t(i % kBlockSide);
+    std::array<glm::vec2, kLanes> pixelOf;
+    for (int i = 0; i < kLanes; ++i) pixelOf[size_t(i)] = {float(x0 + i % kBlockSide), float(y0 + i / kBlockSide)};
+    // Each pixel's sequence, hashed once per call; sample 0 (the centre) needs none.
+    std::array<PixelSequence, kLanes> sequenceOf;
+    if (end > 1)
+        for (int i = 0; i < kLanes; ++i) sequenceOf[size_t(i)] = PixelSequence(x0 + i % kBlockSide, y0 + i / kBlockSide, m_seed);
+    uint64_t blockRays = 0;
+    for (uint32_t k = begin; k < end; ++k) {
+        for (int i = 0; i < kLanes; ++i) {
+            const glm::vec2 position = pixelOf[size_t(i)] + sequenceOf[size_t(i)].offset(k);
+            l.positions[size_t(i)] = shaped ? policy.samplePosition(position, width, height) : position;
+            l.sample[size_t(i)] = k;
+        }
+        blockRays += traceLanes(kLanes, shared);
+    }
+    m_costs[size_t(shared)].rays += blockRays;
+    m_costs[size_t(shared)].pixels += kLanes;
+    m_samples += uint64_t(end - begin) * kLanes;
+    for (int i = 0; i < kLanes; ++i) l.sums[size_t(i)]->count = end;
+}
+
+uint64_t PixelTracer::traceLanes(int lanes, int shared) {
+    const PixelPolicy &policy = m_map.policy(uint16_t(shared));
+    PacketLanes &l = m_lanes;
+    const size_t n = size_t(lanes);
+    m_camera.generateRays({l.positions.data(), n}, m_map.width(), m_map.height(), {l.rays.data(), n});
+    const uint32_t found =
+        m_integrator.tracer().closestHits({l.rays.data(), n}, policy.ray.query(RayType::Primary), {l.hits.data(), n});
+    m_integrator.radianceFromHits({l.rays.data(), n}, {l.hits.data(), n}, found, policy.ray, m_plans[size_t(shared)],
+                                  {l.counters.data(), n}, {l.values.data(), n});
+    uint64_t rays = 0;
+    for (size_t j = 0; j < n; ++j) {
+        PixelSamples &s = *l.sums[j];
+        s.add(l.sample[j], l.values[j]);
+        const uint64_t total = l.counters[j].total(), sampleRays = total - l.totals[j];
+        l.totals[j] = total;
+        s.rays += uint32_t(sampleRays);
+        rays += sampleRays;
+    }
+    return rays;
 }
 
 glm::vec3 PixelTracer::sampleAt(int x, int y, const glm::vec2 &position) {

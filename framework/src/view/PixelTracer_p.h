@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace mvcl::detail {
@@ -66,14 +67,18 @@ struct PixelSamples {
 
     glm::vec3 mean() const { return count ? sum / float(count) : glm::vec3(0.f); }
     /// Adds the value of sample k to the sums; samples come in order (k = 0, 1, …, as
-    /// count counts them), and advancing count is the caller's.
+    /// count counts them, sample 0 into default sums), and advancing count is the caller's.
     void add(uint32_t k, const glm::vec3 &value) {
         sum += value;
         const uint32_t n = k + 1;
         if ((k & n) == 0) { // n a power of two
-            threeQuarterSum = quarterOrNextThreeQuarterSum;
-            quarterOrNextThreeQuarterSum = halfPrefixSum;
-            halfPrefixSum = prefixSum;
+            // Sample 0 goes into zeroed sums (a pixel at count 0 is a fresh PixelSamples), so
+            // the three moves would copy zeros over zeros: skipped in one-sample passes.
+            if (k != 0) {
+                threeQuarterSum = quarterOrNextThreeQuarterSum;
+                quarterOrNextThreeQuarterSum = halfPrefixSum;
+                halfPrefixSum = prefixSum;
+            }
             prefixSum = sum;
         } else if (n % 3 == 0 && std::has_single_bit(n / 3)) { // three quarters of the next power of two
             quarterOrNextThreeQuarterSum = sum;
@@ -155,6 +160,16 @@ private:
     void chargeRun(int policy);
     /// The one policy of every pixel of the block, or −1 (a feathered edge, or policies differ).
     int blockPolicy(int x0, int y0, int x1, int y1) const;
+    /// addBlockSamples() for a whole block (kBlockSide square) of one policy whose pixels all
+    /// take samples [begin, end): one packet per sample, lane i pixel i.
+    void addUniformBlockSamples(int x0, int y0, uint32_t begin, uint32_t end, int shared, PixelSamples *samples,
+                                std::size_t rowStride);
+    /// Traces the first `lanes` lanes of m_lanes under policy `shared` and adds each value to its
+    /// pixel's sums; returns the rays traced.
+    uint64_t traceLanes(int lanes, int shared);
+    /// Whether every ray of the whole block at (x0, y0) misses everything under `policy` and shows
+    /// the same value (see m_footprint and MissAnswer).
+    bool blockMisses(int x0, int y0, int policy, bool shaped) const;
 
     /// A packet of primary rays being filled by addBlockSamples(): kept here, not on the stack
     /// of each call, so that a block does not construct 16 rays, hits and counters anew.
@@ -177,6 +192,18 @@ private:
     const PolicyMap &m_map;
     uint32_t m_seed;
     std::vector<IntegratorPlan> m_plans; ///< per policy of m_map
+    /// What a primary ray that meets nothing gives under a policy, where that is one value for
+    /// all of them (WhittedIntegrator::plainMissRadiance); per policy of m_map.
+    struct MissAnswer {
+        bool isPlain = false;
+        glm::vec3 radiance{0.f};
+        RayCounters counters; ///< added per such sample, besides its primary ray
+    };
+    std::vector<MissAnswer> m_misses;
+    /// Where the camera's rays can meet the tracer's bounded primitives (Camera::rasterFootprint
+    /// of Tracer::bounds()); none where every ray may (the box reaches behind the eye) or where
+    /// the scene has planes, which any ray may meet.
+    std::optional<Camera::RasterRect> m_footprint;
     RayCounters m_rays;
     uint64_t m_samples = 0;
     std::vector<PolicyCost> m_costs;

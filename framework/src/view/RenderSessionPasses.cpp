@@ -204,34 +204,47 @@ void RenderSession::Private::summariseTile(int tile) {
     const detail::PixelSamples *const sumsOf = samples.data();
     const float *const errorOf = errors.data();
     float *const priorityAt = priority.data();
-    for (int y = r.y0; y < r.y1; ++y) {
-        const bool borderRow = y == r.y0 || y == r.y1 - 1;
-        for (int x = r.x0; x < r.x1; ++x) {
-            const size_t i = size_t(y) * size_t(w) + size_t(x);
-            const detail::PixelSamples &s = sumsOf[i];
-            const uint32_t count = s.count;
-            const float error = errorOf[i];
-            minCount = std::min(minCount, count);
-            maxCount = std::max(maxCount, count);
-            countSum += count;
-            worstError = std::max(worstError, error);
-            if (count >= 2) {
-                errorSum += error;
-                maxError = std::max(maxError, error);
-                ++withError;
-                relativeMseSum += s.relativeMse(imageEstimate);
-            } else {
-                ++withoutEstimate;
-            }
-            if (borderRow || x == r.x0 || x == r.x1 - 1) continue;
-            // priorityOf() with its cheap answers inline.
-            const float p = priorityAt[i] = count >= wanted                    ? 0.f
-                                            : !byError || count < minimum ? INFINITY
-                                                                          : errorPriority(x, y, s.rays);
-            if (p > 0.f) ++interiorActive;
-            if (p == INFINITY) interiorFewestUrgent = std::min(interiorFewestUrgent, count);
-            else interiorTopPriority = std::max(interiorTopPriority, p);
+    const auto summarise = [&](size_t i) {
+        const detail::PixelSamples &s = sumsOf[i];
+        const uint32_t count = s.count;
+        const float error = errorOf[i];
+        minCount = std::min(minCount, count);
+        maxCount = std::max(maxCount, count);
+        countSum += count;
+        worstError = std::max(worstError, error);
+        if (count >= 2) {
+            errorSum += error;
+            maxError = std::max(maxError, error);
+            ++withError;
+            relativeMseSum += s.relativeMse(imageEstimate);
+        } else {
+            ++withoutEstimate;
         }
+    };
+    // The tile's interior pixels get their priority here; its border waits for the neighbours.
+    const auto prioritise = [&](int x, int y, size_t i) {
+        const detail::PixelSamples &s = sumsOf[i];
+        const uint32_t count = s.count;
+        // priorityOf() with its cheap answers inline.
+        const float p = priorityAt[i] = count >= wanted                    ? 0.f
+                                        : !byError || count < minimum ? INFINITY
+                                                                      : errorPriority(x, y, s.rays);
+        if (p > 0.f) ++interiorActive;
+        if (p == INFINITY) interiorFewestUrgent = std::min(interiorFewestUrgent, count);
+        else interiorTopPriority = std::max(interiorTopPriority, p);
+    };
+    for (int y = r.y0; y < r.y1; ++y) {
+        const size_t row = size_t(y) * size_t(w);
+        if (y == r.y0 || y == r.y1 - 1 || r.x1 - r.x0 < 3) {
+            for (int x = r.x0; x < r.x1; ++x) summarise(row + size_t(x));
+            continue;
+        }
+        summarise(row + size_t(r.x0));
+        for (int x = r.x0 + 1; x < r.x1 - 1; ++x) {
+            summarise(row + size_t(x));
+            prioritise(x, y, row + size_t(x));
+        }
+        summarise(row + size_t(r.x1 - 1));
     }
     TileSummary summary;
     summary.minCount = minCount;
@@ -406,15 +419,22 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
                 const int bx1 = std::min(bx + kSide, r.x1), by1 = std::min(by + kSide, r.y1);
                 std::array<uint32_t, kSide * kSide> end;
                 uint32_t taking = 0; // bit `count`: the pixel takes samples
+                const auto planPixel = [&](int count, size_t i) {
+                    const uint32_t has = sumsOf[i].count;
+                    const uint32_t after = samplesToTake(urgencyOf[i], has);
+                    end[size_t(count)] = after;
+                    taking |= uint32_t(after > has) << count;
+                };
                 int count = 0;
-                for (int y = by; y < by1; ++y)
-                    for (int x = bx; x < bx1; ++x, ++count) {
-                        const size_t i = size_t(y) * stride + size_t(x);
-                        const uint32_t has = sumsOf[i].count;
-                        const uint32_t after = samplesToTake(urgencyOf[i], has);
-                        end[size_t(count)] = after;
-                        taking |= uint32_t(after > has) << count;
-                    }
+                if (bx1 - bx == kSide && by1 - by == kSide) {
+                    // A whole block (most of them): constant bounds.
+                    for (int dy = 0; dy < kSide; ++dy)
+                        for (int dx = 0; dx < kSide; ++dx)
+                            planPixel(dy * kSide + dx, size_t(by + dy) * stride + size_t(bx + dx));
+                } else {
+                    for (int y = by; y < by1; ++y)
+                        for (int x = bx; x < bx1; ++x, ++count) planPixel(count, size_t(y) * stride + size_t(x));
+                }
                 if (!taking) continue;
                 // An edit cancels between blocks: each pixel gets all of its new samples or none.
                 if (cancel.load(std::memory_order_relaxed)) {
@@ -422,18 +442,28 @@ void RenderSession::Private::tracePass(RenderPassStats &stats) {
                     break;
                 }
                 tracer.addBlockSamples(bx, by, bx1, by1, end.data(), sumsOf + size_t(by) * stride + size_t(bx), stride);
+                const auto showPixel = [&](size_t i) {
+                    const detail::PixelSamples &sums = sumsOf[i];
+                    // relativeError() is +∞ below two samples: asked here, not through a
+                    // call per pixel of a one-sample pass.
+                    estimateOf[i] = sums.count < 2 ? INFINITY : sums.relativeError();
+                    // One sample's mean is its sum (x / 1 is exact): the division was a
+                    // third of this loop's time in a one-sample pass.
+                    shownOf[i] = sums.count == 1 ? sums.sum : sums.mean();
+                };
+                if (taking == (1u << (kSide * kSide)) - 1u) {
+                    // A whole block, every pixel traced (most blocks of a pass): constant bounds and
+                    // no test of `taking` per pixel.
+                    for (int dy = 0; dy < kSide; ++dy)
+                        for (int dx = 0; dx < kSide; ++dx) showPixel(size_t(by + dy) * stride + size_t(bx + dx));
+                    traced += kSide * kSide;
+                    continue;
+                }
                 count = 0;
                 for (int y = by; y < by1; ++y)
                     for (int x = bx; x < bx1; ++x, ++count) {
                         if (!((taking >> count) & 1u)) continue;
-                        const size_t i = size_t(y) * stride + size_t(x);
-                        const detail::PixelSamples &sums = sumsOf[i];
-                        // relativeError() is +∞ below two samples: asked here, not through a
-                        // call per pixel of a one-sample pass.
-                        estimateOf[i] = sums.count < 2 ? INFINITY : sums.relativeError();
-                        // One sample's mean is its sum (x / 1 is exact): the division was a
-                        // third of this loop's time in a one-sample pass.
-                        shownOf[i] = sums.count == 1 ? sums.sum : sums.mean();
+                        showPixel(size_t(y) * stride + size_t(x));
                         ++traced;
                     }
             }

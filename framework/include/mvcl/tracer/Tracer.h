@@ -5,6 +5,7 @@
 /// queries that honour a RayQuery inside traversal. Build once (the constructor); queries are
 /// const and thread-safe.
 
+#include <mvcl/core/Bounds3.h>
 #include <mvcl/core/Export.h>
 
 #include <mvcl/tracer/Hit.h>
@@ -105,6 +106,12 @@ public:
 
     /// Position (with error bound), normals, material and layer of a hit.
     SurfaceInteraction interaction(const Ray &ray, const Hit &hit) const;
+
+    /// The box around every primitive the BVH holds (triangles and spheres; empty when it holds
+    /// none): a ray that misses it can only meet the scene's planes, which are unbounded and
+    /// not in it. For leaving out whole groups of rays before they are made
+    /// (Camera::rasterFootprint).
+    Bounds3f bounds() const;
 
     const Scene &scene() const;
     const TracerBuildStats &buildStats() const;

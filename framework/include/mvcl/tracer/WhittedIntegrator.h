@@ -74,6 +74,15 @@ public:
                           const RayPolicy &policy, const IntegratorPlan &plan, std::span<RayCounters> counters,
                           std::span<glm::vec3> radiance) const;
 
+    /// What radianceFromHit() gives a primary ray that meets nothing, where that is the same
+    /// for every such ray: the background through the colour stage (no outlines, which draw
+    /// next to a silhouette, and no capped clip, whose cap a ray can show without a hit). True
+    /// with that value and what such a sample adds to the counters besides its primary ray;
+    /// false where a miss needs its own ray. For samples known to miss without being traced
+    /// (Camera::rasterFootprint of Tracer::bounds()).
+    bool plainMissRadiance(const RayPolicy &policy, const IntegratorPlan &plan, glm::vec3 &radiance,
+                           RayCounters &counters) const;
+
 private:
     /// Hard ceiling on recursion whatever a policy asks for: keeps the stack bounded (facing
     /// mirrors).

@@ -14,6 +14,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <optional>
 #include <span>
 
 namespace mvcl {
@@ -53,6 +54,17 @@ public:
     /// the CPU has SIMD (a block's camera rays showed in the frame's profile). `rays` holds at
     /// least as many rays as there are positions.
     void generateRays(std::span<const glm::vec2> positions, int width, int height, std::span<Ray> rays) const;
+
+    /// Continuous raster positions [x0, x1] × [y0, y1] (x1 < x0 when none).
+    struct RasterRect {
+        float x0, y0, x1, y1;
+    };
+    /// Where the rays of a width × height image (generateRay()) can meet `box`: a ray through a
+    /// raster position outside the rectangle misses the box. Conservative: the box's corners
+    /// projected in double, and a margin of two pixels on every side that covers the rounding
+    /// of generateRay(). No rectangle (every ray may meet the box) where part of the box lies
+    /// behind or beside the eye, whose projection is unbounded; an empty one for an empty box.
+    std::optional<RasterRect> rasterFootprint(const Bounds3f &box, int width, int height) const;
 
     /// Columns: right, up, backward (−forward) in scene space, i.e. the rotation from camera
     /// space to scene space (the camera lives in scene space, like the tracer).
