@@ -121,6 +121,7 @@ PixelTracer::PixelTracer(const WhittedIntegrator &integrator, const Camera &came
     // Which stages each policy needs is decided here, once, not at every ray.
     m_plans.reserve(map.policies().size());
     m_misses.resize(map.policies().size());
+    m_missSamples.assign(map.policies().size(), 0);
     for (const PixelPolicy &policy : map.policies()) {
         m_plans.push_back(integrator.plan(policy.ray, stages));
         MissAnswer &miss = m_misses[m_plans.size() - 1];
@@ -330,15 +331,12 @@ void PixelTracer::addUniformBlockSamples(int x0, int y0, uint32_t begin, uint32_
         const MissAnswer &miss = m_misses[size_t(shared)];
         for (int i = 0; i < kLanes; ++i) {
             PixelSamples &s = samples[size_t(i / kBlockSide) * rowStride + size_t(i % kBlockSide)];
-            for (uint32_t k = begin; k < end; ++k) {
-                s.add(k, miss.radiance);
-                m_rays += miss.counters;
-            }
+            for (uint32_t k = begin; k < end; ++k) s.add(k, miss.radiance);
             s.rays += end - begin;
             s.count = end;
         }
         const uint64_t rays = uint64_t(end - begin) * kLanes;
-        m_rays.primary += rays;
+        m_missSamples[size_t(shared)] += rays; // their counts are added up in rays()
         m_costs[size_t(shared)].rays += rays;
         m_costs[size_t(shared)].pixels += kLanes;
         m_samples += rays;
@@ -396,6 +394,16 @@ glm::vec3 PixelTracer::sampleAt(int x, int y, const glm::vec2 &position) {
 RayCounters PixelTracer::rays() const {
     RayCounters all = m_rays;
     for (const RayCounters &lane : m_lanes.counters) all += lane;
+    // The untraced misses: a primary ray each, and their policy's miss counts n times over
+    // (by doubling: RayCounters has no product, and a field added to it later is summed too).
+    for (size_t policy = 0; policy < m_missSamples.size(); ++policy) {
+        uint64_t n = m_missSamples[policy];
+        all.primary += n;
+        for (RayCounters power = m_misses[policy].counters; n; n >>= 1) {
+            if (n & 1u) all += power;
+            power += power;
+        }
+    }
     return all;
 }
 

@@ -200,6 +200,7 @@ private:
         RayCounters counters; ///< added per such sample, besides its primary ray
     };
     std::vector<MissAnswer> m_misses;
+    std::vector<uint64_t> m_missSamples; ///< per policy: samples that took the miss answer untraced
     /// Where the camera's rays can meet the tracer's bounded primitives (Camera::rasterFootprint
     /// of Tracer::bounds()); none where every ray may (the box reaches behind the eye) or where
     /// the scene has planes, which any ray may meet.
