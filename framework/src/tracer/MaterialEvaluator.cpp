@@ -17,6 +17,24 @@ constexpr float kMinFootprintCosine = 0.05f;
 
 } // namespace
 
+MaterialEvaluator::MaterialEvaluator(const Scene &scene) : m_scene(scene) {
+    m_plainTerms.reserve(scene.materials.size());
+    for (const Material &m : scene.materials) {
+        PlainTerms &plain = m_plainTerms.emplace_back();
+        plain.textured = m.hasMetallicRoughness;
+        ShadedSurface &s = plain.surface;
+        s.phong.ambient = m.ambient;
+        s.phong.diffuse = m.diffuse;
+        s.phong.specular = m.specular;
+        s.phong.specularColor = m.specularColor;
+        s.phong.shininess = m.shininess;
+        s.phong.reflectivity = m.reflectivity;
+        s.transparency = m.transparency;
+        s.ior = m.ior;
+        s.emission = m.emission;
+    }
+}
+
 const Material &MaterialEvaluator::materialOf(const Hit &hit) const {
     switch (hit.kind) {
     case GeometryKind::Triangle: return m_scene.materials[m_scene.meshes[hit.geometry].material];
@@ -92,21 +110,9 @@ float MaterialEvaluator::transmittance(const Hit &hit) const {
     return transparency;
 }
 
-ShadedSurface MaterialEvaluator::evaluate(const Hit &hit, const SurfaceInteraction &si, const glm::vec3 &direction,
-                                          float coneWidth) const {
+void MaterialEvaluator::applyTextures(const Hit &hit, const SurfaceInteraction &si, const glm::vec3 &direction,
+                                      float coneWidth, ShadedSurface &s) const {
     const Material &m = m_scene.materials[si.material];
-    ShadedSurface s;
-    s.phong.ambient = m.ambient;
-    s.phong.diffuse = m.diffuse;
-    s.phong.specular = m.specular;
-    s.phong.specularColor = m.specularColor;
-    s.phong.shininess = m.shininess;
-    s.phong.reflectivity = m.reflectivity;
-    s.transparency = m.transparency;
-    s.ior = m.ior;
-    s.emission = m.emission;
-    s.shadingNormal = si.shadingNormal;
-    if (!m.hasMetallicRoughness || hit.kind != GeometryKind::Triangle) return s;
 
     const MetallicRoughness &mr = m.metallicRoughness;
     const glm::vec3 &ng = si.geometricNormal;
@@ -171,7 +177,6 @@ ShadedSurface MaterialEvaluator::evaluate(const Hit &hit, const SurfaceInteracti
             }
         }
     }
-    return s;
 }
 
 } // namespace mvcl::detail

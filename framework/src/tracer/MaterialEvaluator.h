@@ -12,6 +12,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <vector>
+
 namespace mvcl {
 
 struct Material;
@@ -34,17 +36,28 @@ struct ShadedSurface {
 
 class MaterialEvaluator {
 public:
-    explicit MaterialEvaluator(const Scene &scene) : m_scene(scene) {}
+    explicit MaterialEvaluator(const Scene &scene);
 
     /// Terms at `hit` seen along `direction` with a ray-cone footprint `coneWidth` wide.
+    /// Inline: most hits take their material's stored terms, a copy, and the call's own set-up
+    /// for the textured case cost them as much again.
     ShadedSurface evaluate(const Hit &hit, const SurfaceInteraction &si, const glm::vec3 &direction,
-                           float coneWidth) const;
+                           float coneWidth) const {
+        const PlainTerms &plain = m_plainTerms[si.material];
+        ShadedSurface s = plain.surface;
+        s.shadingNormal = si.shadingNormal;
+        if (plain.textured && hit.kind == GeometryKind::Triangle) applyTextures(hit, si, direction, coneWidth, s);
+        return s;
+    }
     /// True if the hit does not exist because its alpha is below the mask cutoff.
     bool isCutOut(const Hit &hit) const;
     /// Share of light a shadow ray keeps through this hit (1 where cut out).
     float transmittance(const Hit &hit) const;
 
 private:
+    /// evaluate() on a triangle of a metallic-roughness material: its textures' values.
+    void applyTextures(const Hit &hit, const SurfaceInteraction &si, const glm::vec3 &direction, float coneWidth,
+                       ShadedSurface &s) const;
     const Material &materialOf(const Hit &hit) const;
     /// Alpha (factor × base colour texture) at a triangle hit, finest level.
     float alphaAt(const Hit &hit, const Material &m) const;
@@ -57,6 +70,13 @@ private:
                      const glm::vec3 &geometricNormal, float coneWidth, bool &found) const;
 
     const Scene &m_scene;
+    /// Per material, the terms of an untextured hit (the shading normal left to the hit): one
+    /// copy of a whole ShadedSurface per hit instead of seventeen floats one by one.
+    struct PlainTerms {
+        ShadedSurface surface;
+        bool textured = false; ///< Material::hasMetallicRoughness: triangle hits sample textures
+    };
+    std::vector<PlainTerms> m_plainTerms;
 };
 
 } // namespace detail

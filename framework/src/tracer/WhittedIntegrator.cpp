@@ -122,6 +122,24 @@ struct WhittedIntegrator::ShadingPoint {
     glm::vec3 ng, ns;  ///< geometric and shading normals on the lit side
     float alpha;       ///< opacity stage: the surface's share, blended over `behind`
     glm::vec3 behind;
+    /// originOffsetAlong(si.positionError, ng): the one error projection every ray the point
+    /// spawns is offset by (each offsetRayOrigin() call found it again). Found with the normals:
+    /// found lazily, by the first ray that needs it, it cost more than it saved.
+    glm::vec3 originOffset;
+    /// The spawn origin on ng's side, found by the first ray that leaves there: every shadow ray
+    /// (lightPath() only answers lights on that side) and most reflected rays start from it.
+    mutable bool hasOriginAbove;
+    mutable glm::vec3 originAbove;
+
+    /// offsetRayOrigin(si.position, si.positionError, ng, w), bit for bit.
+    glm::vec3 spawnOrigin(const glm::vec3 &w) const {
+        if (leavesBehind(ng, w)) return offsetPoint(si.position, -originOffset);
+        if (!hasOriginAbove) {
+            originAbove = offsetPoint(si.position, originOffset);
+            hasOriginAbove = true;
+        }
+        return originAbove;
+    }
 };
 
 namespace {
@@ -138,9 +156,11 @@ struct LightPath {
 };
 
 /// The path from the point at `position` (lit side normals ng, ns) to `light`; false where the
-/// light adds nothing (behind the surface, on it, or attenuated away).
-bool lightPath(const glm::vec3 &position, const glm::vec3 &ng, const glm::vec3 &ns, const Light &light,
-               LightPath &path) {
+/// light adds nothing (behind the surface, on it, or attenuated away). Always inlined, as is
+/// directLight(): as calls, their set-up and saved registers were about a tenth of a point's
+/// direct light.
+[[gnu::always_inline]] inline bool lightPath(const glm::vec3 &position, const glm::vec3 &ng, const glm::vec3 &ns,
+                                             const Light &light, LightPath &path) {
     if (light.type == LightType::Directional) {
         path.toLight = -light.direction;
         path.distance = std::numeric_limits<float>::infinity();
@@ -156,10 +176,6 @@ bool lightPath(const glm::vec3 &position, const glm::vec3 &ng, const glm::vec3 &
     }
     path.nDotL = glm::dot(ns, path.toLight);
     return path.nDotL > 0.f && glm::dot(ng, path.toLight) > 0.f;
-}
-
-Ray shadowRayOf(const SurfaceInteraction &si, const glm::vec3 &ng, const glm::vec3 &toLight) {
-    return Ray{offsetRayOrigin(si.position, si.positionError, ng, toLight), toLight};
 }
 
 /// Lights whose shadow rays radianceFromHits() traces as packets; any further light of a scene
@@ -266,6 +282,8 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
     p.ng = p.entering ? si.geometricNormal : -si.geometricNormal;
     p.ns = p.entering ? surface.shadingNormal : -surface.shadingNormal;
     if (glm::dot(p.ns, p.ng) < 0.f) p.ns = p.ng;
+    p.originOffset = originOffsetAlong(si.positionError, p.ng);
+    p.hasOriginAbove = false;
 
     // Opacity stage: a partly opaque primary hit is blended with what the ray meets when it goes
     // on through the surface (the same constraints, t still counted from the camera).
@@ -284,7 +302,7 @@ WhittedIntegrator::prepareShading(const Ray &ray, RayType type, int depth, const
         RayQuery &onwardQuery = onwardPolicy.query(RayType::Primary);
         onwardQuery.tMin = std::max(0.f, onwardQuery.tMin - hit.t);
         onwardQuery.tMax = onwardQuery.tMax - hit.t;
-        Ray onward{offsetRayOrigin(si.position, si.positionError, p.ng, d), d};
+        Ray onward{p.spawnOrigin(d), d};
         onward.coneWidth = p.coneWidth;
         onward.coneSpread = ray.coneSpread;
         // depth + 1 bounds the walk through stacked surfaces (the ceiling); it is no bounce.
@@ -327,9 +345,11 @@ glm::vec3 WhittedIntegrator::shadowBlockedShare(const ShadingPolicy &shading) {
     return glm::mix(glm::vec3(1.f), shading.shadowTint, shading.shadowStrength);
 }
 
-glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const IntegratorPlan &plan, RayCounters &counters,
-                                         const LightAnswer *answers, const RayQuery &shadowQuery,
-                                         const glm::vec3 &shadowBlocked) const {
+// Inlined into litColor() (see lightPath()).
+[[gnu::always_inline]] inline glm::vec3
+WhittedIntegrator::directLight(const ShadingPoint &p, const IntegratorPlan &plan, RayCounters &counters,
+                               const LightAnswer *answers, const RayQuery &shadowQuery,
+                               const glm::vec3 &shadowBlocked) const {
     const Scene &scene = m_scene;
     const PhongTerms &m = p.surface.phong;
     const glm::vec3 &ns = p.ns;
@@ -360,7 +380,7 @@ glm::vec3 WhittedIntegrator::directLight(const ShadingPoint &p, const Integrator
             } else {
                 countRay(RayType::Shadow, counters);
                 passed = answer ? answer->passed
-                                : lightPassing(shadowRayOf(p.si, p.ng, path.toLight), path.distance, shadowQuery,
+                                : lightPassing(Ray{p.spawnOrigin(path.toLight), path.toLight}, path.distance, shadowQuery,
                                                plan.shadows);
                 if (plan.shadows != plan.forcedShadows) ++counters.skippedTransparentWalks;
             }
@@ -397,7 +417,7 @@ struct WhittedIntegrator::SecondaryRays {
                                                                SecondaryRays &next, glm::vec3 &finished) const {
     const ShadingPolicy &shading = policy.shading;
     const PhongTerms &m = p.surface.phong;
-    const glm::vec3 &d = p.d, &ng = p.ng, &ns = p.ns;
+    const glm::vec3 &d = p.d, &ns = p.ns;
     const SurfaceInteraction &si = p.si;
 
     glm::vec3 local;
@@ -448,7 +468,7 @@ struct WhittedIntegrator::SecondaryRays {
             reflectWeight += refractWeight * fresnel;
             refractWeight *= 1.f - fresnel;
             const glm::vec3 t = glm::normalize(eta * d + (eta * cosI - cosT) * ns);
-            next.refractRay = Ray{offsetRayOrigin(si.position, si.positionError, ng, t), t};
+            next.refractRay = Ray{p.spawnOrigin(t), t};
             next.refractRay.coneWidth = p.coneWidth;
             next.refractRay.coneSpread = p.ray.coneSpread;
             next.refracts = true;
@@ -458,7 +478,7 @@ struct WhittedIntegrator::SecondaryRays {
     next.reflects = reflectWeight > 0.f;
     if (next.reflects) {
         const glm::vec3 r = d - 2.f * glm::dot(ns, d) * ns;
-        next.reflectRay = Ray{offsetRayOrigin(si.position, si.positionError, ng, r), r};
+        next.reflectRay = Ray{p.spawnOrigin(r), r};
         next.reflectRay.coneWidth = p.coneWidth;
         next.reflectRay.coneSpread = p.ray.coneSpread;
         // Metals tint what they mirror; the Fresnel share of a transmissive surface stays white.
@@ -566,7 +586,7 @@ void WhittedIntegrator::shadeBatch(std::span<ShadingPoint> points, uint32_t lit,
             LightAnswer &a = answers[size_t(i)][l];
             a.lit = lightPath(p.si.position, p.ng, p.ns, lights[l], a.path);
             if (!a.lit) continue;
-            rays[n] = shadowRayOf(p.si, p.ng, a.path.toLight);
+            rays[n] = Ray{p.spawnOrigin(a.path.toLight), a.path.toLight};
             distances[n] = a.path.distance;
             pointOf[n++] = i;
         }
