@@ -43,9 +43,11 @@ inline namespace MVCL_ISA_NAMESPACE {
 /// The per-ray constants of intersectNode(), broadcast once per query.
 struct NodeRay {
     const RayContext &c;
-    /// c.nearIdx / c.farIdx copied here: a local the compiler keeps in registers, instead of
-    /// reloading them through `c` after every leaf call.
-    int near[3], far[3];
+    /// Byte offsets of the near and far slab rows per axis in WideNode::bounds (c.nearIdx and
+    /// c.farIdx times a row's size), made once per query: the node test adds them to the node's
+    /// address as they are, where the indices took a sign extension and a shift each, at every
+    /// node.
+    std::size_t near[3], far[3];
     uint32_t layerMask;
 #if MVCL_TRAVERSAL_AVX2
     __m256 ox, oy, oz, ix, iy, iz, fx, fy, fz, tLow; ///< f: invDirFar
@@ -76,23 +78,28 @@ struct NodeRay {
 #endif
     void copyIdx() {
         for (int k = 0; k < 3; ++k) {
-            near[k] = c.nearIdx[k];
-            far[k] = c.farIdx[k];
+            near[k] = std::size_t(c.nearIdx[k]) * sizeof(WideNode::bounds[0]);
+            far[k] = std::size_t(c.farIdx[k]) * sizeof(WideNode::bounds[0]);
         }
         layerMask = c.layerMask;
     }
 };
 
+/// The row of n.bounds at byte offset `offset` (NodeRay::near, NodeRay::far).
+MVCL_KERNEL_INLINE const float *slabRow(const WideNode &n, std::size_t offset) {
+    return reinterpret_cast<const float *>(reinterpret_cast<const char *>(n.bounds) + offset);
+}
+
 #if !MVCL_TRAVERSAL_AVX2 && defined(__SSE2__)
 /// Lanes [first, first + 4) of intersectNode().
 inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 tHigh,
                          float *tNear4) {
-    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[0]] + first), r.ox), r.ix);
-    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[1]] + first), r.oy), r.iy);
-    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[2]] + first), r.oz), r.iz);
-    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[0]] + first), r.ox), r.fx);
-    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[1]] + first), r.oy), r.fy);
-    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[2]] + first), r.oz), r.fz);
+    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.near[0]) + first), r.ox), r.ix);
+    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.near[1]) + first), r.oy), r.iy);
+    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.near[2]) + first), r.oz), r.iz);
+    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.far[0]) + first), r.ox), r.fx);
+    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.far[1]) + first), r.oy), r.fy);
+    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.far[2]) + first), r.oz), r.fz);
     // maxps/minps return the second operand when either is NaN: the running value survives a
     // 0·∞ lane exactly like the scalar comparisons in intersectBox.
     __m128 tNear = _mm_max_ps(tx0, r.tLow);
@@ -117,12 +124,12 @@ inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 
 /// the bit mask of the lanes entered and their entry distances (tOut is 32-byte aligned).
 inline int intersectNode(const WideNode &n, const NodeRay &r, float tHigh, float tOut[kWidth]) {
 #if MVCL_TRAVERSAL_AVX2
-    const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[0]]), r.ox), r.ix);
-    const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[1]]), r.oy), r.iy);
-    const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[2]]), r.oz), r.iz);
-    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[0]]), r.ox), r.fx);
-    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[1]]), r.oy), r.fy);
-    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[2]]), r.oz), r.fz);
+    const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.near[0])), r.ox), r.ix);
+    const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.near[1])), r.oy), r.iy);
+    const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.near[2])), r.oz), r.iz);
+    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.far[0])), r.ox), r.fx);
+    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.far[1])), r.oy), r.fy);
+    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.far[2])), r.oz), r.fz);
     // vmaxps/vminps have the NaN rule of maxps/minps (second operand), as in the SSE path.
     __m256 tNear = _mm256_max_ps(tx0, r.tLow);
     tNear = _mm256_max_ps(ty0, tNear);
@@ -166,71 +173,25 @@ inline bool occluded(const WideBvh &wide, const RayContext &c, float tHigh,
     const WatertightRay wray(c.ray);
     const WatertightRay4 wray4(wray);
     const NodeRay nodeRay(c);
-    // Pairs are only taken while sp <= kStackSize - 2·kWidth, so above that mark the stack only
-    // grows by the one-node steps, a plain depth-first descent: at most 7 entries per level
-    // (kStackSize covers that for the whole depth) on top of the mark plus one pair's 16.
-    uint32_t stack[2 * kStackSize + kWidth];
+    // A depth-first descent: at most kWidth − 1 entries per level.
+    uint32_t stack[kStackSize];
     int sp = 0;
     uint32_t cur = wide.root;
     for (;;) {
-        const bool pairable = sp > 0 && sp <= kStackSize - 2 * kWidth;
-        if (pairable && WideLeaf::isLeaf(cur) != WideLeaf::isLeaf(stack[sp - 1])) {
-            // A leaf and a node: the slab test of the node overlaps the triangle test.
-            uint32_t node = stack[--sp], leaf = cur;
-            if (WideLeaf::isLeaf(node)) std::swap(node, leaf);
-            alignas(32) float tNear[kWidth];
-            int bits = intersectNode(nodes[node], nodeRay, tHigh, tNear);
-            if (testLeaf<true>(leaf, blocks, info, c, wray4, unused)) return true;
-            if (bits) {
-                const uint32_t *child = nodes[node].child;
-                cur = child[std::countr_zero(unsigned(bits))];
-                bits &= bits - 1;
-                while (bits) {
-                    stack[sp++] = child[std::countr_zero(unsigned(bits))];
-                    bits &= bits - 1;
-                }
-                continue;
-            }
-        } else if (WideLeaf::isLeaf(cur)) {
-            if (testLeaf<true>(cur, blocks, info, c, wray4, unused)) return true;
-        } else if (pairable) {
-            // Two nodes at once. Traversal is bound by the latency of the chain node load →
-            // slab test → child reference → next node load, not by throughput; any-hit does not
-            // care about order, so the next pending node is tested alongside and the two
-            // chains overlap.
-            const uint32_t other = stack[--sp];
-            alignas(32) float tNear[kWidth], tNearOther[kWidth];
-            int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
-            int bitsOther = intersectNode(nodes[other], nodeRay, tHigh, tNearOther);
-            const uint32_t *child = nodes[other].child;
-            while (bitsOther) {
-                stack[sp++] = child[std::countr_zero(unsigned(bitsOther))];
-                bitsOther &= bitsOther - 1;
-            }
-            if (bits) {
-                // The first child goes straight on, not through a stack store and reload.
-                child = nodes[cur].child;
-                cur = child[std::countr_zero(unsigned(bits))];
-                bits &= bits - 1;
-                while (bits) {
-                    stack[sp++] = child[std::countr_zero(unsigned(bits))];
-                    bits &= bits - 1;
-                }
-                continue;
-            }
-        } else {
+        // One node per step, no pairing: a loop this small keeps its state in registers, and
+        // the out-of-order core already overlaps the next pending node's chain with this one
+        // wherever the branches are predicted.
+        if (!WideLeaf::isLeaf(cur)) {
             alignas(32) float tNear[kWidth];
             int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
             if (bits) {
                 const uint32_t *child = nodes[cur].child;
                 cur = child[std::countr_zero(unsigned(bits))];
-                bits &= bits - 1;
-                while (bits) {
-                    stack[sp++] = child[std::countr_zero(unsigned(bits))];
-                    bits &= bits - 1;
-                }
+                for (bits &= bits - 1; bits; bits &= bits - 1) stack[sp++] = child[std::countr_zero(unsigned(bits))];
                 continue;
             }
+        } else if (testLeaf<true>(cur, blocks, info, c, wray4, unused)) {
+            return true;
         }
         if (sp == 0) return false;
         cur = stack[--sp];
