@@ -173,15 +173,34 @@ inline bool occluded(const WideBvh &wide, const RayContext &c, float tHigh,
     const WatertightRay wray(c.ray);
     const WatertightRay4 wray4(wray);
     const NodeRay nodeRay(c);
-    // A depth-first descent: at most kWidth − 1 entries per level.
-    uint32_t stack[kStackSize];
+    // Pairs are only taken while sp <= kStackSize - 2·kWidth, so above that mark the stack only
+    // grows by the one-node steps, a plain depth-first descent: at most 7 entries per level
+    // (kStackSize covers that for the whole depth) on top of the mark plus one pair's 16.
+    uint32_t stack[2 * kStackSize + kWidth];
     int sp = 0;
     uint32_t cur = wide.root;
     for (;;) {
-        // One node per step, no pairing: a loop this small keeps its state in registers, and
-        // the out-of-order core already overlaps the next pending node's chain with this one
-        // wherever the branches are predicted.
-        if (!WideLeaf::isLeaf(cur)) {
+        if (WideLeaf::isLeaf(cur)) {
+            if (testLeaf<true>(cur, blocks, info, c, wray4, unused)) return true;
+        } else if (sp > 0 && sp <= kStackSize - 2 * kWidth && !WideLeaf::isLeaf(stack[sp - 1])) {
+            // Two nodes at once. Traversal is bound by the latency of the chain node load →
+            // slab test → child reference → next node load, not by throughput; any-hit does not
+            // care about order, so the next pending node is tested alongside and the two
+            // chains overlap.
+            const uint32_t other = stack[--sp];
+            alignas(32) float tNear[kWidth], tNearOther[kWidth];
+            int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
+            int bitsOther = intersectNode(nodes[other], nodeRay, tHigh, tNearOther);
+            const uint32_t *child = nodes[other].child;
+            for (; bitsOther; bitsOther &= bitsOther - 1) stack[sp++] = child[std::countr_zero(unsigned(bitsOther))];
+            if (bits) {
+                // The first child goes straight on, not through a stack store and reload.
+                child = nodes[cur].child;
+                cur = child[std::countr_zero(unsigned(bits))];
+                for (bits &= bits - 1; bits; bits &= bits - 1) stack[sp++] = child[std::countr_zero(unsigned(bits))];
+                continue;
+            }
+        } else {
             alignas(32) float tNear[kWidth];
             int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
             if (bits) {
@@ -190,8 +209,6 @@ inline bool occluded(const WideBvh &wide, const RayContext &c, float tHigh,
                 for (bits &= bits - 1; bits; bits &= bits - 1) stack[sp++] = child[std::countr_zero(unsigned(bits))];
                 continue;
             }
-        } else if (testLeaf<true>(cur, blocks, info, c, wray4, unused)) {
-            return true;
         }
         if (sp == 0) return false;
         cur = stack[--sp];
