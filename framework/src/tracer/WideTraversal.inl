@@ -317,11 +317,18 @@ MVCL_KERNEL_INLINE bool closestWalk(const WideBvh &wide, const PlaneRecord *plan
             alignas(32) float tNear[kWidth], tNearOther[kWidth];
             const int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
             const int bitsOther = intersectNode(nodes[other], nodeRay, tHigh, tNearOther);
-            const int base = sp;
-            insert(base, bitsOther, nodes[other].child, tNearOther);
-            insert(base, bits, nodes[cur].child, tNear);
-            if (sp > base) {
+            // Where one of the two enters nothing, the other goes on as a single node would:
+            // through descend()'s one- and two-child paths, not the insertion loops.
+            if (bits && bitsOther) {
+                const int base = sp;
+                insert(base, bitsOther, nodes[other].child, tNearOther);
+                insert(base, bits, nodes[cur].child, tNear);
                 cur = stack[--sp].ref;
+                continue;
+            }
+            if (bits | bitsOther) {
+                if (bits) descend(bits, nodes[cur].child, tNear);
+                else descend(bitsOther, nodes[other].child, tNearOther);
                 continue;
             }
         } else {
