@@ -43,50 +43,39 @@ inline namespace MVCL_ISA_NAMESPACE {
 /// The per-ray constants of intersectNode(), broadcast once per query.
 struct NodeRay {
     const RayContext &c;
-    /// Byte offsets of the near and far slab rows per axis in WideNode::bounds (c.nearIdx and
-    /// c.farIdx times a row's size), made once per query: the node test adds them to the node's
-    /// address as they are, where the indices took a sign extension and a shift each, at every
-    /// node.
-    std::size_t near[3], far[3];
     uint32_t layerMask;
 #if MVCL_TRAVERSAL_AVX2
     __m256 ox, oy, oz, ix, iy, iz, fx, fy, fz, tLow; ///< f: invDirFar
 
     explicit NodeRay(const RayContext &ctx)
-        : c(ctx), ox(_mm256_set1_ps(ctx.ray.origin.x)), oy(_mm256_set1_ps(ctx.ray.origin.y)),
+        : c(ctx), layerMask(ctx.layerMask), ox(_mm256_set1_ps(ctx.ray.origin.x)), oy(_mm256_set1_ps(ctx.ray.origin.y)),
           oz(_mm256_set1_ps(ctx.ray.origin.z)), ix(_mm256_set1_ps(ctx.invDir.x)),
           iy(_mm256_set1_ps(ctx.invDir.y)), iz(_mm256_set1_ps(ctx.invDir.z)),
           fx(_mm256_set1_ps(ctx.invDirFar.x)), fy(_mm256_set1_ps(ctx.invDirFar.y)),
           fz(_mm256_set1_ps(ctx.invDirFar.z)),
-          tLow(_mm256_set1_ps(ctx.tLow)) {
-        copyIdx();
-    }
+          tLow(_mm256_set1_ps(ctx.tLow)) {}
 #elif defined(__SSE2__)
     __m128 ox, oy, oz, ix, iy, iz, fx, fy, fz, tLow; ///< f: invDirFar
 
     explicit NodeRay(const RayContext &ctx)
-        : c(ctx), ox(_mm_set1_ps(ctx.ray.origin.x)), oy(_mm_set1_ps(ctx.ray.origin.y)),
+        : c(ctx), layerMask(ctx.layerMask), ox(_mm_set1_ps(ctx.ray.origin.x)), oy(_mm_set1_ps(ctx.ray.origin.y)),
           oz(_mm_set1_ps(ctx.ray.origin.z)), ix(_mm_set1_ps(ctx.invDir.x)),
           iy(_mm_set1_ps(ctx.invDir.y)), iz(_mm_set1_ps(ctx.invDir.z)),
           fx(_mm_set1_ps(ctx.invDirFar.x)), fy(_mm_set1_ps(ctx.invDirFar.y)),
           fz(_mm_set1_ps(ctx.invDirFar.z)),
-          tLow(_mm_set1_ps(ctx.tLow)) {
-        copyIdx();
-    }
+          tLow(_mm_set1_ps(ctx.tLow)) {}
 #else
-    explicit NodeRay(const RayContext &ctx) : c(ctx) { copyIdx(); }
+    explicit NodeRay(const RayContext &ctx) : c(ctx), layerMask(ctx.layerMask) {}
 #endif
-    void copyIdx() {
-        for (int k = 0; k < 3; ++k) {
-            near[k] = std::size_t(c.nearIdx[k]) * sizeof(WideNode::bounds[0]);
-            far[k] = std::size_t(c.farIdx[k]) * sizeof(WideNode::bounds[0]);
-        }
-        layerMask = c.layerMask;
-    }
 };
 
-/// The row of n.bounds at byte offset `offset` (NodeRay::near, NodeRay::far).
-MVCL_KERNEL_INLINE const float *slabRow(const WideNode &n, std::size_t offset) {
+static_assert(sizeof(WideNode::bounds[0]) == RayContext::kRowBytes);
+
+/// The row of n.bounds at byte offset `offset` (RayContext::nearRow, RayContext::farRow): the
+/// offsets are made once per query, where indices took a sign extension and a shift per row at
+/// every node. Read through the context rather than copied: the copies were spilled to the
+/// stack anyway, and the copying was a dozen instructions of every query's set-up.
+MVCL_KERNEL_INLINE const float *slabRow(const WideNode &n, uint32_t offset) {
     return reinterpret_cast<const float *>(reinterpret_cast<const char *>(n.bounds) + offset);
 }
 
@@ -94,12 +83,12 @@ MVCL_KERNEL_INLINE const float *slabRow(const WideNode &n, std::size_t offset) {
 /// Lanes [first, first + 4) of intersectNode().
 inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 tHigh,
                          float *tNear4) {
-    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.near[0]) + first), r.ox), r.ix);
-    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.near[1]) + first), r.oy), r.iy);
-    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.near[2]) + first), r.oz), r.iz);
-    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.far[0]) + first), r.ox), r.fx);
-    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.far[1]) + first), r.oy), r.fy);
-    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.far[2]) + first), r.oz), r.fz);
+    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.c.nearRow[0]) + first), r.ox), r.ix);
+    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.c.nearRow[1]) + first), r.oy), r.iy);
+    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.c.nearRow[2]) + first), r.oz), r.iz);
+    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.c.farRow[0]) + first), r.ox), r.fx);
+    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.c.farRow[1]) + first), r.oy), r.fy);
+    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.c.farRow[2]) + first), r.oz), r.fz);
     // maxps/minps return the second operand when either is NaN: the running value survives a
     // 0·∞ lane exactly like the scalar comparisons in intersectBox.
     __m128 tNear = _mm_max_ps(tx0, r.tLow);
@@ -124,12 +113,12 @@ inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 
 /// the bit mask of the lanes entered and their entry distances (tOut is 32-byte aligned).
 inline int intersectNode(const WideNode &n, const NodeRay &r, float tHigh, float tOut[kWidth]) {
 #if MVCL_TRAVERSAL_AVX2
-    const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.near[0])), r.ox), r.ix);
-    const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.near[1])), r.oy), r.iy);
-    const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.near[2])), r.oz), r.iz);
-    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.far[0])), r.ox), r.fx);
-    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.far[1])), r.oy), r.fy);
-    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.far[2])), r.oz), r.fz);
+    const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.c.nearRow[0])), r.ox), r.ix);
+    const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.c.nearRow[1])), r.oy), r.iy);
+    const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.c.nearRow[2])), r.oz), r.iz);
+    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.c.farRow[0])), r.ox), r.fx);
+    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.c.farRow[1])), r.oy), r.fy);
+    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.c.farRow[2])), r.oz), r.fz);
     // vmaxps/vminps have the NaN rule of maxps/minps (second operand), as in the SSE path.
     __m256 tNear = _mm256_max_ps(tx0, r.tLow);
     tNear = _mm256_max_ps(ty0, tNear);
