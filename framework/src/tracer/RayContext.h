@@ -67,8 +67,15 @@ struct RayContext {
     /// Same rounding count as (fl((b − o)·invDir))·s — sub, division, two products — so the
     /// 1 + 2γ(3) bound still covers it; an overflow to ±∞ (|d| below ~3e-39) only widens.
     glm::vec3 invDirFar;
-    int nearIdx[3]; ///< index into BvhNode::bounds of the slab the ray enters through, per axis
-    int farIdx[3];
+    /// Index into BvhNode::bounds of the slab the ray enters through, per axis. The fourth entry
+    /// of this and the next three arrays is padding for the one 128-bit store that writes each.
+    int nearIdx[4];
+    int farIdx[4];
+    /// nearIdx and farIdx as byte offsets of rows of kRowBytes (WideNode::bounds: a row of eight
+    /// floats per bound), which the node test adds to a node's address as they are.
+    static constexpr uint32_t kRowBytes = 32;
+    uint32_t nearRow[4];
+    uint32_t farRow[4];
     float tMin;     ///< query lower bound (hits need t ≥ tMin and t > 0)
     float tMax;     ///< query upper bound
     float tLow;     ///< box culling lower bound (with slack)
@@ -98,20 +105,24 @@ struct RayContext {
         // to the near index and taken from the far one (a third of the scalar instructions).
         const __m128i flip =
             _mm_and_si128(_mm_srai_epi32(_mm_castps_si128(reciprocal), 31), _mm_set1_epi32(3));
-        alignas(16) int32_t near4[4], far4[4];
-        _mm_store_si128(reinterpret_cast<__m128i *>(near4), _mm_add_epi32(_mm_setr_epi32(0, 1, 2, 0), flip));
-        _mm_store_si128(reinterpret_cast<__m128i *>(far4), _mm_sub_epi32(_mm_setr_epi32(3, 4, 5, 0), flip));
-        for (int k = 0; k < 3; ++k) {
-            nearIdx[k] = near4[k];
-            farIdx[k] = far4[k];
-        }
+        const __m128i nearV = _mm_add_epi32(_mm_setr_epi32(0, 1, 2, 0), flip);
+        const __m128i farV = _mm_sub_epi32(_mm_setr_epi32(3, 4, 5, 0), flip);
+        _mm_storeu_si128(reinterpret_cast<__m128i *>(nearIdx), nearV);
+        _mm_storeu_si128(reinterpret_cast<__m128i *>(farIdx), farV);
+        static_assert(kRowBytes == 32, "the shift below");
+        _mm_storeu_si128(reinterpret_cast<__m128i *>(nearRow), _mm_slli_epi32(nearV, 5));
+        _mm_storeu_si128(reinterpret_cast<__m128i *>(farRow), _mm_slli_epi32(farV, 5));
 #else
         for (int k = 0; k < 3; ++k) invDir[k] = 1.f / r.direction[k];
         for (int k = 0; k < 3; ++k) {
             const int negative = int(std::bit_cast<uint32_t>(invDir[k]) >> 31);
             nearIdx[k] = k + 3 * negative;
             farIdx[k] = k + 3 - 3 * negative;
+            nearRow[k] = uint32_t(nearIdx[k]) * kRowBytes;
+            farRow[k] = uint32_t(farIdx[k]) * kRowBytes;
         }
+        nearIdx[3] = farIdx[3] = 0;
+        nearRow[3] = farRow[3] = 0;
 #endif
         invDirFar = invDir * kBoxFarScale;
         tLow = tMin > 0.f ? tMin * kTraversalSlackDown : 0.f;

@@ -43,56 +43,52 @@ inline namespace MVCL_ISA_NAMESPACE {
 /// The per-ray constants of intersectNode(), broadcast once per query.
 struct NodeRay {
     const RayContext &c;
-    /// c.nearIdx / c.farIdx copied here: a local the compiler keeps in registers, instead of
-    /// reloading them through `c` after every leaf call.
-    int near[3], far[3];
     uint32_t layerMask;
 #if MVCL_TRAVERSAL_AVX2
     __m256 ox, oy, oz, ix, iy, iz, fx, fy, fz, tLow; ///< f: invDirFar
 
     explicit NodeRay(const RayContext &ctx)
-        : c(ctx), ox(_mm256_set1_ps(ctx.ray.origin.x)), oy(_mm256_set1_ps(ctx.ray.origin.y)),
+        : c(ctx), layerMask(ctx.layerMask), ox(_mm256_set1_ps(ctx.ray.origin.x)), oy(_mm256_set1_ps(ctx.ray.origin.y)),
           oz(_mm256_set1_ps(ctx.ray.origin.z)), ix(_mm256_set1_ps(ctx.invDir.x)),
           iy(_mm256_set1_ps(ctx.invDir.y)), iz(_mm256_set1_ps(ctx.invDir.z)),
           fx(_mm256_set1_ps(ctx.invDirFar.x)), fy(_mm256_set1_ps(ctx.invDirFar.y)),
           fz(_mm256_set1_ps(ctx.invDirFar.z)),
-          tLow(_mm256_set1_ps(ctx.tLow)) {
-        copyIdx();
-    }
+          tLow(_mm256_set1_ps(ctx.tLow)) {}
 #elif defined(__SSE2__)
     __m128 ox, oy, oz, ix, iy, iz, fx, fy, fz, tLow; ///< f: invDirFar
 
     explicit NodeRay(const RayContext &ctx)
-        : c(ctx), ox(_mm_set1_ps(ctx.ray.origin.x)), oy(_mm_set1_ps(ctx.ray.origin.y)),
+        : c(ctx), layerMask(ctx.layerMask), ox(_mm_set1_ps(ctx.ray.origin.x)), oy(_mm_set1_ps(ctx.ray.origin.y)),
           oz(_mm_set1_ps(ctx.ray.origin.z)), ix(_mm_set1_ps(ctx.invDir.x)),
           iy(_mm_set1_ps(ctx.invDir.y)), iz(_mm_set1_ps(ctx.invDir.z)),
           fx(_mm_set1_ps(ctx.invDirFar.x)), fy(_mm_set1_ps(ctx.invDirFar.y)),
           fz(_mm_set1_ps(ctx.invDirFar.z)),
-          tLow(_mm_set1_ps(ctx.tLow)) {
-        copyIdx();
-    }
+          tLow(_mm_set1_ps(ctx.tLow)) {}
 #else
-    explicit NodeRay(const RayContext &ctx) : c(ctx) { copyIdx(); }
+    explicit NodeRay(const RayContext &ctx) : c(ctx), layerMask(ctx.layerMask) {}
 #endif
-    void copyIdx() {
-        for (int k = 0; k < 3; ++k) {
-            near[k] = c.nearIdx[k];
-            far[k] = c.farIdx[k];
-        }
-        layerMask = c.layerMask;
-    }
 };
+
+static_assert(sizeof(WideNode::bounds[0]) == RayContext::kRowBytes);
+
+/// The row of n.bounds at byte offset `offset` (RayContext::nearRow, RayContext::farRow): the
+/// offsets are made once per query, where indices took a sign extension and a shift per row at
+/// every node. Read through the context rather than copied: the copies were spilled to the
+/// stack anyway, and the copying was a dozen instructions of every query's set-up.
+MVCL_KERNEL_INLINE const float *slabRow(const WideNode &n, uint32_t offset) {
+    return reinterpret_cast<const float *>(reinterpret_cast<const char *>(n.bounds) + offset);
+}
 
 #if !MVCL_TRAVERSAL_AVX2 && defined(__SSE2__)
 /// Lanes [first, first + 4) of intersectNode().
 inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 tHigh,
                          float *tNear4) {
-    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[0]] + first), r.ox), r.ix);
-    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[1]] + first), r.oy), r.iy);
-    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.near[2]] + first), r.oz), r.iz);
-    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[0]] + first), r.ox), r.fx);
-    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[1]] + first), r.oy), r.fy);
-    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.bounds[r.far[2]] + first), r.oz), r.fz);
+    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.c.nearRow[0]) + first), r.ox), r.ix);
+    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.c.nearRow[1]) + first), r.oy), r.iy);
+    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.c.nearRow[2]) + first), r.oz), r.iz);
+    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.c.farRow[0]) + first), r.ox), r.fx);
+    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.c.farRow[1]) + first), r.oy), r.fy);
+    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(slabRow(n, r.c.farRow[2]) + first), r.oz), r.fz);
     // maxps/minps return the second operand when either is NaN: the running value survives a
     // 0·∞ lane exactly like the scalar comparisons in intersectBox.
     __m128 tNear = _mm_max_ps(tx0, r.tLow);
@@ -117,12 +113,12 @@ inline int intersectHalf(const WideNode &n, const NodeRay &r, int first, __m128 
 /// the bit mask of the lanes entered and their entry distances (tOut is 32-byte aligned).
 inline int intersectNode(const WideNode &n, const NodeRay &r, float tHigh, float tOut[kWidth]) {
 #if MVCL_TRAVERSAL_AVX2
-    const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[0]]), r.ox), r.ix);
-    const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[1]]), r.oy), r.iy);
-    const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.near[2]]), r.oz), r.iz);
-    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[0]]), r.ox), r.fx);
-    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[1]]), r.oy), r.fy);
-    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.bounds[r.far[2]]), r.oz), r.fz);
+    const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.c.nearRow[0])), r.ox), r.ix);
+    const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.c.nearRow[1])), r.oy), r.iy);
+    const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.c.nearRow[2])), r.oz), r.iz);
+    const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.c.farRow[0])), r.ox), r.fx);
+    const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.c.farRow[1])), r.oy), r.fy);
+    const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(slabRow(n, r.c.farRow[2])), r.oz), r.fz);
     // vmaxps/vminps have the NaN rule of maxps/minps (second operand), as in the SSE path.
     __m256 tNear = _mm256_max_ps(tx0, r.tLow);
     tNear = _mm256_max_ps(ty0, tNear);
@@ -173,27 +169,9 @@ inline bool occluded(const WideBvh &wide, const RayContext &c, float tHigh,
     int sp = 0;
     uint32_t cur = wide.root;
     for (;;) {
-        const bool pairable = sp > 0 && sp <= kStackSize - 2 * kWidth;
-        if (pairable && WideLeaf::isLeaf(cur) != WideLeaf::isLeaf(stack[sp - 1])) {
-            // A leaf and a node: the slab test of the node overlaps the triangle test.
-            uint32_t node = stack[--sp], leaf = cur;
-            if (WideLeaf::isLeaf(node)) std::swap(node, leaf);
-            alignas(32) float tNear[kWidth];
-            int bits = intersectNode(nodes[node], nodeRay, tHigh, tNear);
-            if (testLeaf<true>(leaf, blocks, info, c, wray4, unused)) return true;
-            if (bits) {
-                const uint32_t *child = nodes[node].child;
-                cur = child[std::countr_zero(unsigned(bits))];
-                bits &= bits - 1;
-                while (bits) {
-                    stack[sp++] = child[std::countr_zero(unsigned(bits))];
-                    bits &= bits - 1;
-                }
-                continue;
-            }
-        } else if (WideLeaf::isLeaf(cur)) {
+        if (WideLeaf::isLeaf(cur)) {
             if (testLeaf<true>(cur, blocks, info, c, wray4, unused)) return true;
-        } else if (pairable) {
+        } else if (sp > 0 && sp <= kStackSize - 2 * kWidth && !WideLeaf::isLeaf(stack[sp - 1])) {
             // Two nodes at once. Traversal is bound by the latency of the chain node load →
             // slab test → child reference → next node load, not by throughput; any-hit does not
             // care about order, so the next pending node is tested alongside and the two
@@ -203,19 +181,12 @@ inline bool occluded(const WideBvh &wide, const RayContext &c, float tHigh,
             int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
             int bitsOther = intersectNode(nodes[other], nodeRay, tHigh, tNearOther);
             const uint32_t *child = nodes[other].child;
-            while (bitsOther) {
-                stack[sp++] = child[std::countr_zero(unsigned(bitsOther))];
-                bitsOther &= bitsOther - 1;
-            }
+            for (; bitsOther; bitsOther &= bitsOther - 1) stack[sp++] = child[std::countr_zero(unsigned(bitsOther))];
             if (bits) {
                 // The first child goes straight on, not through a stack store and reload.
                 child = nodes[cur].child;
                 cur = child[std::countr_zero(unsigned(bits))];
-                bits &= bits - 1;
-                while (bits) {
-                    stack[sp++] = child[std::countr_zero(unsigned(bits))];
-                    bits &= bits - 1;
-                }
+                for (bits &= bits - 1; bits; bits &= bits - 1) stack[sp++] = child[std::countr_zero(unsigned(bits))];
                 continue;
             }
         } else {
@@ -224,11 +195,7 @@ inline bool occluded(const WideBvh &wide, const RayContext &c, float tHigh,
             if (bits) {
                 const uint32_t *child = nodes[cur].child;
                 cur = child[std::countr_zero(unsigned(bits))];
-                bits &= bits - 1;
-                while (bits) {
-                    stack[sp++] = child[std::countr_zero(unsigned(bits))];
-                    bits &= bits - 1;
-                }
+                for (bits &= bits - 1; bits; bits &= bits - 1) stack[sp++] = child[std::countr_zero(unsigned(bits))];
                 continue;
             }
         }
@@ -339,11 +306,18 @@ MVCL_KERNEL_INLINE bool closestWalk(const WideBvh &wide, const PlaneRecord *plan
             alignas(32) float tNear[kWidth], tNearOther[kWidth];
             const int bits = intersectNode(nodes[cur], nodeRay, tHigh, tNear);
             const int bitsOther = intersectNode(nodes[other], nodeRay, tHigh, tNearOther);
-            const int base = sp;
-            insert(base, bitsOther, nodes[other].child, tNearOther);
-            insert(base, bits, nodes[cur].child, tNear);
-            if (sp > base) {
+            // Where one of the two enters nothing, the other goes on as a single node would:
+            // through descend()'s one- and two-child paths, not the insertion loops.
+            if (bits && bitsOther) {
+                const int base = sp;
+                insert(base, bitsOther, nodes[other].child, tNearOther);
+                insert(base, bits, nodes[cur].child, tNear);
                 cur = stack[--sp].ref;
+                continue;
+            }
+            if (bits | bitsOther) {
+                if (bits) descend(bits, nodes[cur].child, tNear);
+                else descend(bitsOther, nodes[other].child, tNearOther);
                 continue;
             }
         } else {
